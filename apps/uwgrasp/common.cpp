@@ -1,0 +1,34 @@
+#include "common.hpp"
+
+#include <tbb/global_control.h>
+#include <unistd.h>
+
+#include <iostream>
+
+namespace uwgrasp::app {
+
+void add_common(CLI::App& cmd, CommonOptions& opt) {
+  cmd.add_option("--config", opt.config_path, "YAML config file (defaults: config/default.yaml)")
+      ->check(CLI::ExistingFile);
+  cmd.add_option("--set", opt.sets, "Override a config value: section.key=value (repeatable)");
+  cmd.add_option("--seed", opt.seed, "Random seed (same seed, same output)")->check(CLI::NonNegativeNumber);
+  cmd.add_option("--threads", opt.threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 4096));
+}
+
+Session open_session(const CommonOptions& opt) {
+  Session s;
+  s.config = io::load_config(opt.config_path, opt.sets);
+  if (opt.seed >= 0) s.config.seed = static_cast<std::uint64_t>(opt.seed);
+  if (opt.threads >= 0) s.config.threads = static_cast<std::uint32_t>(opt.threads);
+  if (s.config.threads > 0) {
+    s.thread_limit = std::make_shared<tbb::global_control>(
+        tbb::global_control::max_allowed_parallelism, s.config.threads);
+  }
+  return s;
+}
+
+void progress(const std::string& line) {
+  if (::isatty(STDERR_FILENO)) std::cerr << line << "\n";
+}
+
+}  // namespace uwgrasp::app

@@ -1,0 +1,40 @@
+// uwgrasp: grasp poses for an underwater vehicle with a rigidly mounted (0-DoF) gripper.
+// Exit codes: 0 success, 2 bad input or usage, 1 internal error.
+#include <iostream>
+
+#include "common.hpp"
+#include "uwgrasp/core/error.hpp"
+
+int main(int argc, char** argv) {
+  using namespace uwgrasp::app;
+  CLI::App app{"uwgrasp " UWGRASP_VERSION
+               " - grasp poses for an underwater vehicle with a rigidly mounted gripper"};
+  app.require_subcommand(1, 1);
+  app.set_version_flag("--version", UWGRASP_VERSION);
+  std::vector<std::pair<CLI::App*, Runner>> runners;
+  add_segment_command(app, runners);
+  add_config_command(app, runners);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "uwgrasp: " << e.what() << " (see uwgrasp --help)\n";
+    return 2;
+  }
+  try {
+    for (auto& [cmd, run] : runners)
+      if (cmd->parsed()) return run();
+  } catch (const uwgrasp::Error& e) {
+    std::cerr << "uwgrasp: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "uwgrasp: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 2;
+}

@@ -1,0 +1,29 @@
+# Shared compile settings for every uwgrasp target.
+function(uwgrasp_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
+    -Wcast-align -Woverloaded-virtual)
+  if(UWGRASP_WARNINGS_AS_ERRORS)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(UWGRASP_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=${UWGRASP_SANITIZE} -fno-omit-frame-pointer
+      -fno-sanitize-recover=all)
+    target_link_options(${target} PRIVATE -fsanitize=${UWGRASP_SANITIZE})
+  endif()
+endfunction()
+
+# uwgrasp_module(name SOURCES ... DEPS ...): one folder = one static target uwgrasp::name.
+function(uwgrasp_module name)
+  cmake_parse_arguments(M "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(uwgrasp_${name} STATIC ${M_SOURCES})
+  add_library(uwgrasp::${name} ALIAS uwgrasp_${name})
+  set_target_properties(uwgrasp_${name} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME uwgrasp_${name})
+  target_include_directories(uwgrasp_${name} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_link_libraries(uwgrasp_${name} PUBLIC ${M_PUBLIC_DEPS} PRIVATE ${M_PRIVATE_DEPS})
+  target_compile_features(uwgrasp_${name} PUBLIC cxx_std_20)
+  uwgrasp_warnings(uwgrasp_${name})
+  install(TARGETS uwgrasp_${name} EXPORT uwgraspTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/uwgrasp/${name}
+    FILES_MATCHING PATTERN "*.hpp")
+endfunction()

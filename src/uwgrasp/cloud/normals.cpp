@@ -1,0 +1,68 @@
+#include "uwgrasp/cloud/normals.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Eigenvalues>
+#include <vector>
+
+#include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::cloud {
+
+PointNormal normal_from(std::span<const Eigen::Vector3f> points,
+                        std::span<const std::uint32_t> neighbours, const Eigen::Vector3f& at,
+                        const Eigen::Vector3f& viewpoint) {
+  PointNormal out;
+  if (neighbours.size() < 3) return out;
+  // Two passes about the centroid in double precision: stable for small, distant patches.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (auto i : neighbours) mean += points[i].cast<double>();
+  mean /= static_cast<double>(neighbours.size());
+  Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+  for (auto i : neighbours) {
+    const Eigen::Vector3d d = points[i].cast<double>() - mean;
+    c.noalias() += d * d.transpose();
+  }
+  c /= static_cast<double>(neighbours.size());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(c);
+  const Eigen::Vector3d l = es.eigenvalues().cwiseMax(0.0);  // ascending
+  Eigen::Vector3f n = es.eigenvectors().col(0).cast<float>().normalized();
+  if (n.dot(viewpoint - at) < 0.0f) n = -n;
+  const double sum = l.sum();
+  out.normal = n;
+  out.curvature = sum > 0.0 ? static_cast<float>(l[0] / sum) : 0.0f;
+  return out;
+}
+
+void compute_normals(Cloud& cloud, const NormalConfig& cfg) {
+  if (cfg.radius <= 0.0f && cfg.k < 3)
+    throw Error("normals: k must be at least 3, got " + std::to_string(cfg.k));
+  const KdTree tree(cloud.points);
+  cloud.normals.assign(cloud.size(), PointNormal{}.normal);
+  cloud.curvature.assign(cloud.size(), PointNormal{}.curvature);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 512), [&](const auto& r) {
+    std::vector<std::uint32_t> idx(cfg.k);
+    std::vector<float> d2(cfg.k);
+    std::vector<std::pair<std::uint32_t, float>> hits;
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      std::size_t n = 0;
+      if (cfg.radius > 0.0f) {
+        tree.radius(cloud.points[i], cfg.radius, hits);
+        idx.resize(hits.size());
+        for (std::size_t j = 0; j < hits.size(); ++j) idx[j] = hits[j].first;
+        n = hits.size();
+      } else {
+        n = tree.knn(cloud.points[i], cfg.k, idx.data(), d2.data());
+      }
+      const PointNormal pn = normal_from(cloud.points, {idx.data(), n}, cloud.points[i],
+                                         cloud.viewpoint);
+      cloud.normals[i] = pn.normal;
+      cloud.curvature[i] = pn.curvature;
+    }
+  });
+}
+
+}  // namespace uwgrasp::cloud

@@ -1,0 +1,32 @@
+#pragma once
+// Surface normals and curvature from the local covariance (thesis 4.2.1, eq. 4.4-4.7).
+#include <Eigen/Core>
+#include <cstdint>
+#include <limits>
+#include <span>
+
+#include "uwgrasp/core/cloud.hpp"
+
+namespace uwgrasp::cloud {
+
+struct NormalConfig {
+  std::uint32_t k = 20;  // neighbourhood size P^k (the point itself included)
+  float radius = 0.0f;   // m; > 0 uses all points within the radius instead of k
+};
+
+struct PointNormal {
+  Eigen::Vector3f normal = Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
+  float curvature = std::numeric_limits<float>::quiet_NaN();
+};
+
+// Normal = eigenvector of the smallest eigenvalue of C (eq. 4.4 about the centroid, eq. 4.5),
+// flipped so that n.(viewpoint - p) >= 0 (eq. 4.6); curvature = l0 / (l0 + l1 + l2) (eq. 4.7).
+// Fewer than 3 neighbours gives NaN normal and curvature.
+PointNormal normal_from(std::span<const Eigen::Vector3f> points,
+                        std::span<const std::uint32_t> neighbours, const Eigen::Vector3f& at,
+                        const Eigen::Vector3f& viewpoint);
+
+// Fills cloud.normals and cloud.curvature for every point (in parallel). Points must be finite.
+void compute_normals(Cloud& cloud, const NormalConfig& cfg);
+
+}  // namespace uwgrasp::cloud

@@ -1,0 +1,21 @@
+#pragma once
+// Statistical outlier removal (thesis 4.1.3, Rusu et al. 2008).
+#include "uwgrasp/cloud/filters.hpp"
+
+namespace uwgrasp::cloud {
+
+struct OutlierConfig {
+  bool enabled = true;
+  std::uint32_t k = 10;   // neighbours whose mean distance describes a point
+  double std_mul = 1.0;   // threshold mu + std_mul * sigma; the thesis uses mu + sigma
+};
+
+// Removes points whose mean distance to their k nearest neighbours exceeds mu + std_mul*sigma,
+// where mu and sigma are the mean and (sample) standard deviation of that distance over the
+// cloud. Points must be finite. A cloud with <= k points is returned unchanged.
+Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg);
+
+// The per-point mean neighbour distances (exposed for tests and diagnostics).
+std::vector<float> mean_neighbour_distances(const Cloud& in, std::uint32_t k);
+
+}  // namespace uwgrasp::cloud

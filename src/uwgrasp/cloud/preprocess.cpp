@@ -1,0 +1,100 @@
+#include "uwgrasp/cloud/preprocess.hpp"
+
+#include <string>
+
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::cloud {
+
+namespace {
+// After a filter that kept `kept` (indices into the previous cloud), re-point the map.
+void remap_filtered(std::vector<std::int32_t>& map, const std::vector<std::uint32_t>& kept,
+                    std::size_t previous_size) {
+  std::vector<std::int32_t> pos(previous_size, -1);
+  for (std::size_t j = 0; j < kept.size(); ++j) pos[kept[j]] = static_cast<std::int32_t>(j);
+  for (auto& m : map)
+    if (m >= 0) m = pos[static_cast<std::size_t>(m)];
+}
+
+void require_points(const Cloud& c, const char* stage) {
+  if (c.empty()) throw Error(std::string("preprocess: no points left after the ") + stage +
+                             " stage");
+}
+}  // namespace
+
+Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed,
+                        StageTimer& timer) {
+  check_consistent(in, "input cloud");
+  Preprocessed out;
+  out.counts.input = in.size();
+  if (in.empty()) throw Error("input cloud is empty");
+  out.output_of_input.resize(in.size());
+  for (std::size_t i = 0; i < in.size(); ++i) out.output_of_input[i] = static_cast<std::int32_t>(i);
+  out.plane_of_input.assign(in.size(), 0);
+
+  timer.start("finite");
+  Filtered f = remove_invalid(in);
+  remap_filtered(out.output_of_input, f.indices, in.size());
+  if (f.cloud.empty()) throw Error("input cloud has no finite point (all x/y/z are NaN or Inf)");
+  out.counts.finite = f.cloud.size();
+  Cloud cur = std::move(f.cloud);
+
+  if (cfg.range.enabled) {
+    timer.start("range");
+    Filtered r = crop_range(cur, cfg.range);
+    remap_filtered(out.output_of_input, r.indices, cur.size());
+    cur = std::move(r.cloud);
+    require_points(cur, "range");
+  }
+  out.counts.in_range = cur.size();
+
+  if (cfg.outliers.enabled) {
+    timer.start("outliers");
+    Filtered o = remove_outliers(cur, cfg.outliers);
+    remap_filtered(out.output_of_input, o.indices, cur.size());
+    cur = std::move(o.cloud);
+  }
+  out.counts.inliers_kept = cur.size();
+
+  if (cfg.voxel.enabled) {
+    timer.start("voxel");
+    VoxelResult v = voxel_grid(cur, cfg.voxel);
+    for (auto& m : out.output_of_input)
+      if (m >= 0) {
+        const std::uint32_t to = v.voxel_of[static_cast<std::size_t>(m)];
+        m = to == VoxelResult::kDropped ? -1 : static_cast<std::int32_t>(to);
+      }
+    cur = std::move(v.cloud);
+    require_points(cur, "voxel");
+  }
+  out.counts.voxels = cur.size();
+
+  if (cfg.plane.enabled) {
+    timer.start("plane");
+    out.plane = fit_plane(cur, cfg.plane, seed);
+    if (!out.plane.found && cfg.plane.required)
+      throw Error("preprocess: no plane found (preprocess.plane.distance = " +
+                  std::to_string(cfg.plane.distance) + " m)");
+    if (out.plane.found) {
+      std::vector<char> keep(cur.size(), 1);
+      for (auto i : out.plane.inliers) keep[i] = 0;
+      for (std::size_t i = 0; i < in.size(); ++i) {
+        const auto m = out.output_of_input[i];
+        if (m >= 0 && !keep[static_cast<std::size_t>(m)]) out.plane_of_input[i] = 1;
+      }
+      Filtered p = keep_if(cur, keep);
+      remap_filtered(out.output_of_input, p.indices, cur.size());
+      cur = std::move(p.cloud);
+      out.counts.plane = out.plane.inliers.size();
+    }
+  }
+
+  timer.start("normals");
+  compute_normals(cur, cfg.normals);
+  timer.stop();
+  out.counts.output = cur.size();
+  out.cloud = std::move(cur);
+  return out;
+}
+
+}  // namespace uwgrasp::cloud

@@ -1,0 +1,45 @@
+#pragma once
+// The thesis's chapter-4 preprocessing chain as one thin composition of the cloud/ stages:
+// invalid values -> range crop -> outliers -> voxel grid -> plane removal -> normals.
+#include <cstdint>
+#include <vector>
+
+#include "uwgrasp/cloud/filters.hpp"
+#include "uwgrasp/cloud/normals.hpp"
+#include "uwgrasp/cloud/outliers.hpp"
+#include "uwgrasp/cloud/ransac.hpp"
+#include "uwgrasp/cloud/voxel.hpp"
+#include "uwgrasp/core/timer.hpp"
+
+namespace uwgrasp::cloud {
+
+struct PreprocessConfig {
+  RangeConfig range;
+  OutlierConfig outliers;
+  VoxelConfig voxel;
+  PlaneConfig plane;
+  NormalConfig normals;
+};
+
+struct PreprocessCounts {
+  std::size_t input = 0, finite = 0, in_range = 0, inliers_kept = 0, voxels = 0, plane = 0,
+              output = 0;
+};
+
+struct Preprocessed {
+  Cloud cloud;  // what is left after every stage, with normals and curvature
+  // For every input point, the index of the output point that represents it, or -1.
+  std::vector<std::int32_t> output_of_input;
+  // For every input point, true if the plane stage removed it (or the voxel that held it).
+  std::vector<char> plane_of_input;
+  PlaneResult plane;  // coefficients; inliers refer to the cloud the plane stage saw
+  PreprocessCounts counts;
+};
+
+// Runs the chain; each stage's time is recorded in `timer` under its own name ("finite",
+// "range", "outliers", "voxel", "plane", "normals"). Throws Error when the input has no finite
+// point, when nothing survives a stage, or when a plane is required and none is found.
+Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed,
+                        StageTimer& timer);
+
+}  // namespace uwgrasp::cloud

@@ -1,0 +1,126 @@
+#include "uwgrasp/cloud/ransac.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <Eigen/Eigenvalues>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "uwgrasp/core/rng.hpp"
+
+namespace uwgrasp::cloud {
+
+namespace {
+constexpr std::uint32_t kBatch = 8;  // hypotheses scored in one pass over the points
+
+using Counts = std::array<std::uint32_t, kBatch>;
+
+// Inlier counts of up to kBatch planes in one parallel pass (integer sums: deterministic).
+Counts count_inliers(const Cloud& in, const std::array<Eigen::Vector4f, kBatch>& planes,
+                     std::uint32_t nplanes, float tol) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, in.size(), 1 << 13), Counts{},
+      [&](const auto& r, Counts c) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const Eigen::Vector3f& p = in.points[i];
+          for (std::uint32_t h = 0; h < nplanes; ++h) {
+            const auto& m = planes[h];
+            c[h] += std::abs(m[0] * p.x() + m[1] * p.y() + m[2] * p.z() + m[3]) <= tol;
+          }
+        }
+        return c;
+      },
+      [](Counts a, const Counts& b) {
+        for (std::uint32_t h = 0; h < kBatch; ++h) a[h] += b[h];
+        return a;
+      });
+}
+
+// Plane through three random distinct points of hypothesis i; false if they are collinear.
+bool hypothesis(const Cloud& in, std::uint64_t seed, std::uint32_t i, Eigen::Vector4f& plane) {
+  Rng rng(seed, i);
+  const std::uint64_t n = in.size();
+  const std::uint64_t a = rng.below(n);
+  std::uint64_t b = rng.below(n), c = rng.below(n);
+  for (int t = 0; t < 16 && (b == a); ++t) b = rng.below(n);
+  for (int t = 0; t < 16 && (c == a || c == b); ++t) c = rng.below(n);
+  const Eigen::Vector3f p0 = in.points[a], u = in.points[b] - p0, v = in.points[c] - p0;
+  Eigen::Vector3f nrm = u.cross(v);
+  const float len = nrm.norm();
+  if (!(len > 1e-12f * std::max(1.0f, u.squaredNorm() + v.squaredNorm()))) return false;
+  nrm /= len;
+  plane = Eigen::Vector4f(nrm.x(), nrm.y(), nrm.z(), -nrm.dot(p0));
+  return true;
+}
+
+std::vector<std::uint32_t> select_inliers(const Cloud& in, const Eigen::Vector4f& m, float tol) {
+  std::vector<std::uint32_t> idx;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const auto& p = in.points[i];
+    if (std::abs(m.head<3>().dot(p) + m[3]) <= tol) idx.push_back(static_cast<std::uint32_t>(i));
+  }
+  return idx;
+}
+}  // namespace
+
+double ransac_iterations(double p, double w, int n) {
+  const double wn = std::pow(w, n);
+  if (wn >= 1.0) return 1.0;
+  if (wn <= 0.0) return std::numeric_limits<double>::infinity();
+  return std::max(1.0, std::ceil(std::log(1.0 - p) / std::log(1.0 - wn)));
+}
+
+Eigen::Vector4f least_squares_plane(const Cloud& in, const std::vector<std::uint32_t>& idx) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (auto i : idx) mean += in.points[i].cast<double>();
+  mean /= static_cast<double>(idx.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (auto i : idx) {
+    const Eigen::Vector3d d = in.points[i].cast<double>() - mean;
+    cov.noalias() += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+  const Eigen::Vector3d n = es.eigenvectors().col(0);
+  return Eigen::Vector4d(n.x(), n.y(), n.z(), -n.dot(mean)).cast<float>();
+}
+
+PlaneResult fit_plane(const Cloud& in, const PlaneConfig& cfg, std::uint64_t seed) {
+  PlaneResult res;
+  if (in.size() < 3) return res;
+  const double n = static_cast<double>(in.size());
+  std::uint32_t budget = cfg.max_iterations, best_count = 0;
+  Eigen::Vector4f best = Eigen::Vector4f::Zero();
+  std::uint32_t drawn = 0;
+  while (drawn < budget) {
+    std::array<Eigen::Vector4f, kBatch> planes{};
+    std::array<bool, kBatch> valid{};
+    const std::uint32_t nb = std::min(kBatch, budget - drawn);
+    for (std::uint32_t h = 0; h < nb; ++h) valid[h] = hypothesis(in, seed, drawn + h, planes[h]);
+    const Counts counts = count_inliers(in, planes, nb, cfg.distance);
+    // Replay the batch in order, exactly as a sequential RANSAC would have run it.
+    for (std::uint32_t h = 0; h < nb && drawn < budget; ++h, ++drawn) {
+      if (!valid[h] || counts[h] <= best_count) continue;
+      best_count = counts[h];
+      best = planes[h];
+      const double k = ransac_iterations(cfg.probability, best_count / n);
+      budget = static_cast<std::uint32_t>(std::min<double>(cfg.max_iterations, k));
+    }
+  }
+  res.iterations = drawn;
+  if (best_count < 3 || best_count < cfg.min_inlier_ratio * n) return res;
+  res.found = true;
+  res.coefficients = best;
+  res.inliers = select_inliers(in, best, cfg.distance);
+  if (cfg.refine && res.inliers.size() >= 3) {
+    res.coefficients = least_squares_plane(in, res.inliers);
+    res.inliers = select_inliers(in, res.coefficients, cfg.distance);
+  }
+  // Orient the normal towards the viewpoint (eq. 4.6) so the sign is reproducible.
+  if (res.coefficients.head<3>().dot(in.viewpoint) + res.coefficients[3] < 0.0f)
+    res.coefficients = -res.coefficients;
+  return res;
+}
+
+}  // namespace uwgrasp::cloud

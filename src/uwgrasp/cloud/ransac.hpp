@@ -1,0 +1,41 @@
+#pragma once
+// RANSAC plane fit (thesis 4.1.4, Fischler & Bolles 1981) with the iteration count of eq. 4.3.
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "uwgrasp/core/cloud.hpp"
+
+namespace uwgrasp::cloud {
+
+struct PlaneConfig {
+  bool enabled = true;
+  float distance = 0.01f;      // m; inlier tolerance (the first Fischler-Bolles threshold)
+  double probability = 0.99;   // p of eq. 4.2-4.3; the thesis uses 99 % (8.2)
+  std::uint32_t max_iterations = 20;  // explicit cap; the thesis sets k = 20 (8.2)
+  double min_inlier_ratio = 0.05;     // a plane needs at least this share of the points
+  bool refine = true;          // least-squares refit on the inliers, then reselect them
+  bool required = false;       // no plane found is an error (otherwise the stage is a no-op)
+};
+
+struct PlaneResult {
+  bool found = false;
+  Eigen::Vector4f coefficients = Eigen::Vector4f::Zero();  // n.x n.y n.z d, |n| = 1, n.p + d = 0
+  std::vector<std::uint32_t> inliers;                      // ascending
+  std::uint32_t iterations = 0;                            // hypotheses drawn
+};
+
+// Eq. 4.3: k = log(1 - p) / log(1 - w^n), rounded up, at least 1. w is the inlier fraction.
+double ransac_iterations(double p, double w, int n = 3);
+
+// Fits the plane with the most inliers. Each hypothesis i draws its three points from
+// Rng(seed, i), so the result depends only on the seed. After every improvement the iteration
+// budget is recomputed from eq. 4.3 with w = best inliers / N, and never exceeds max_iterations.
+// The plane normal points towards the cloud's viewpoint. Degenerate input (fewer than 3 points,
+// all collinear) gives found = false.
+PlaneResult fit_plane(const Cloud& in, const PlaneConfig& cfg, std::uint64_t seed);
+
+// Least-squares plane through points (eigenvector of the smallest covariance eigenvalue).
+Eigen::Vector4f least_squares_plane(const Cloud& in, const std::vector<std::uint32_t>& idx);
+
+}  // namespace uwgrasp::cloud

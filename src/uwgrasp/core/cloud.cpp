@@ -1,0 +1,76 @@
+#include "uwgrasp/core/cloud.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp {
+
+namespace {
+void check_size(std::size_t got, std::size_t want, const char* attr, const char* what) {
+  if (got != 0 && got != want) {
+    throw Error(std::string(what) + ": attribute '" + attr + "' has " + std::to_string(got) +
+                " entries for " + std::to_string(want) + " points");
+  }
+}
+}  // namespace
+
+void check_consistent(const Cloud& cloud, const char* what) {
+  const std::size_t n = cloud.size();
+  check_size(cloud.normals.size(), n, "normals", what);
+  check_size(cloud.curvature.size(), n, "curvature", what);
+  check_size(cloud.colors.size(), n, "colors", what);
+  check_size(cloud.labels.size(), n, "labels", what);
+  if (static_cast<std::size_t>(cloud.width) * cloud.height != n) {
+    throw Error(std::string(what) + ": width*height = " + std::to_string(cloud.width) + "*" +
+                std::to_string(cloud.height) + " but the cloud has " + std::to_string(n) +
+                " points");
+  }
+}
+
+template <class T>
+static void gather(const std::vector<T>& in, std::span<const std::uint32_t> idx,
+                   std::vector<T>& out) {
+  if (in.empty()) return;
+  out.resize(idx.size());
+  for (std::size_t i = 0; i < idx.size(); ++i) out[i] = in[idx[i]];
+}
+
+Cloud select(const Cloud& cloud, std::span<const std::uint32_t> indices) {
+  Cloud out;
+  gather(cloud.points, indices, out.points);
+  gather(cloud.normals, indices, out.normals);
+  gather(cloud.curvature, indices, out.curvature);
+  gather(cloud.colors, indices, out.colors);
+  gather(cloud.labels, indices, out.labels);
+  out.viewpoint = cloud.viewpoint;
+  make_unorganised(out);
+  return out;
+}
+
+void make_unorganised(Cloud& cloud) {
+  cloud.width = static_cast<std::uint32_t>(cloud.points.size());
+  cloud.height = 1;
+}
+
+Eigen::Vector3d centroid(const Cloud& cloud) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto& p : cloud.points) sum += p.cast<double>();
+  return cloud.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(cloud.size()));
+}
+
+Eigen::Matrix3d covariance(const Cloud& cloud, const Eigen::Vector3d& mean) {
+  Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+  for (const auto& p : cloud.points) {
+    const Eigen::Vector3d d = p.cast<double>() - mean;
+    c.noalias() += d * d.transpose();
+  }
+  return cloud.empty() ? c : Eigen::Matrix3d(c / static_cast<double>(cloud.size()));
+}
+
+bool is_finite(const Eigen::Vector3f& p) {
+  return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
+}
+
+}  // namespace uwgrasp

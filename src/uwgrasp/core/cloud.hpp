@@ -1,0 +1,52 @@
+#pragma once
+// Cloud: one vector per attribute; an empty vector means the attribute is absent.
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace uwgrasp {
+
+struct Rgb8 {
+  std::uint8_t r = 0, g = 0, b = 0;
+  friend bool operator==(const Rgb8&, const Rgb8&) = default;
+};
+
+struct Cloud {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<Eigen::Vector3f> normals;
+  std::vector<float> curvature;
+  std::vector<Rgb8> colors;
+  std::vector<std::uint32_t> labels;
+  // Organised clouds (one point per pixel, row-major) have height > 1; unorganised: height 1.
+  std::uint32_t width = 0;
+  std::uint32_t height = 1;
+  // Sensor origin in the cloud's frame (the camera optical frame for sensor clouds).
+  Eigen::Vector3f viewpoint = Eigen::Vector3f::Zero();
+
+  std::size_t size() const { return points.size(); }
+  bool empty() const { return points.empty(); }
+  bool organised() const { return height > 1; }
+  bool has_normals() const { return !normals.empty(); }
+  bool has_curvature() const { return !curvature.empty(); }
+  bool has_colors() const { return !colors.empty(); }
+  bool has_labels() const { return !labels.empty(); }
+};
+
+// Throws Error naming `what` if an attribute vector is neither empty nor the size of points, or
+// width*height disagrees with the point count.
+void check_consistent(const Cloud& cloud, const char* what);
+
+// Subset in the order of `indices`; the result is unorganised and keeps the viewpoint.
+Cloud select(const Cloud& cloud, std::span<const std::uint32_t> indices);
+
+// Marks the cloud unorganised (width = size, height = 1).
+void make_unorganised(Cloud& cloud);
+
+// Centroid of the points (eq. 4.5) and their covariance about it (eq. 4.4, divided by N).
+Eigen::Vector3d centroid(const Cloud& cloud);
+Eigen::Matrix3d covariance(const Cloud& cloud, const Eigen::Vector3d& mean);
+
+bool is_finite(const Eigen::Vector3f& p);
+
+}  // namespace uwgrasp

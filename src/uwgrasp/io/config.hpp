@@ -1,0 +1,32 @@
+#pragma once
+// The effective configuration: compiled-in defaults (the thesis's values, mirrored 1:1 in
+// config/default.yaml), then a YAML file, then `--set section.key=value` overrides.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "uwgrasp/cloud/preprocess.hpp"
+#include "uwgrasp/segment/pipeline.hpp"
+
+namespace uwgrasp::io {
+
+struct Config {
+  std::uint64_t seed = 1;      // every random choice derives from it
+  std::uint32_t threads = 0;   // 0: all cores
+  cloud::PreprocessConfig preprocess;
+  segment::SegmentConfig segment;
+};
+
+// Throws Error naming the file (or "--set") and the dotted key for an unknown key, a value of
+// the wrong type or a value out of range; a missing or malformed file is an Error too.
+Config load_config(const std::string& path, const std::vector<std::string>& overrides = {});
+Config parse_config(const std::string& yaml, const std::string& source,
+                    const std::vector<std::string>& overrides = {});
+// Applies "a.b.c=value" overrides to an existing config.
+void apply_overrides(Config& cfg, const std::vector<std::string>& overrides);
+
+std::string to_yaml(const Config& cfg);
+nlohmann::json to_json(const Config& cfg);
+
+}  // namespace uwgrasp::io

@@ -1,0 +1,97 @@
+#include "uwgrasp/io/pcd.hpp"
+
+#include <pcl/console/print.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/io/atomic_file.hpp"
+#include "uwgrasp/io/pcl_blob.hpp"
+
+namespace uwgrasp::io {
+
+namespace {
+std::string extension(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  return e;
+}
+
+// PCL reports problems on stderr itself; uwgrasp reports them as one Error line instead.
+void quiet_pcl() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
+
+void check_readable(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(path + ": no such file");
+  if (fs::is_directory(path, ec)) throw Error(path + ": is a directory, not a cloud file");
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw Error(path + ": cannot open for reading");
+  if (fs::file_size(path, ec) == 0) throw Error(path + ": file is empty");
+}
+}  // namespace
+
+Cloud load_cloud(const std::string& path) {
+  quiet_pcl();
+  check_readable(path);
+  const std::string ext = extension(path);
+  pcl::PCLPointCloud2 blob;
+  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
+  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
+  int rc = -1;
+  try {
+    if (ext == ".pcd") {
+      pcl::PCDReader reader;
+      int version = 0;
+      rc = reader.read(path, blob, origin, orientation, version);
+    } else if (ext == ".ply") {
+      pcl::PLYReader reader;
+      int version = 0;
+      rc = reader.read(path, blob, origin, orientation, version);
+    } else {
+      throw Error(path + ": unsupported extension '" + ext + "' (use .pcd or .ply)");
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(path + ": cannot parse (" + e.what() + ")");
+  }
+  if (rc < 0) throw Error(path + ": malformed or truncated " + ext.substr(1) + " file");
+  Cloud c = from_blob(blob, path);
+  c.viewpoint = origin.head<3>();
+  return c;
+}
+
+void save_cloud(const std::string& path, const Cloud& cloud, PcdFormat format) {
+  quiet_pcl();
+  check_consistent(cloud, path.c_str());
+  const std::string ext = extension(path);
+  if (ext != ".pcd" && ext != ".ply")
+    throw Error(path + ": unsupported extension '" + ext + "' (use .pcd or .ply)");
+  const pcl::PCLPointCloud2 blob = to_blob(cloud);
+  Eigen::Vector4f origin(cloud.viewpoint.x(), cloud.viewpoint.y(), cloud.viewpoint.z(), 0.0f);
+  const Eigen::Quaternionf orient = Eigen::Quaternionf::Identity();
+  write_atomically(path, [&](const std::string& tmp) {
+    int rc = 0;
+    if (ext == ".ply") {
+      rc = pcl::PLYWriter().write(tmp, blob, origin, orient, true, false);
+    } else {
+      pcl::PCDWriter w;
+      switch (format) {
+        case PcdFormat::ascii: rc = w.writeASCII(tmp, blob, origin, orient, 8); break;
+        case PcdFormat::binary: rc = w.writeBinary(tmp, blob, origin, orient); break;
+        case PcdFormat::binary_compressed:
+          rc = cloud.empty() ? w.writeBinary(tmp, blob, origin, orient)
+                             : w.writeBinaryCompressed(tmp, blob, origin, orient);
+          break;
+      }
+    }
+    if (rc < 0) throw Error(path + ": cannot write");
+  });
+}
+
+}  // namespace uwgrasp::io

@@ -1,0 +1,29 @@
+#pragma once
+// Preprocessing + segmentation as one call, with per-stage times (ARCHITECTURE.md data flow).
+#include "uwgrasp/cloud/preprocess.hpp"
+#include "uwgrasp/core/timer.hpp"
+#include "uwgrasp/segment/region_growing.hpp"
+#include "uwgrasp/segment/select.hpp"
+
+namespace uwgrasp::segment {
+
+struct SegmentConfig {
+  RegionConfig region;
+  ColorConfig color;
+  ObjectConfig object;
+};
+
+struct Scene {
+  cloud::Preprocessed pre;          // the processed cloud and where each input point went
+  Segmentation segmentation;        // over pre.cloud
+  std::vector<SegmentInfo> info;    // per segment
+  StageTimer timer;                 // finite, range, outliers, voxel, plane, normals, segment
+};
+
+Scene segment_scene(const Cloud& input, const cloud::PreprocessConfig& pre,
+                    const SegmentConfig& seg, std::uint64_t seed);
+
+// Segment label of every input point (-1: none), through pre.output_of_input.
+std::vector<std::int32_t> input_labels(const Scene& scene);
+
+}  // namespace uwgrasp::segment

@@ -1,0 +1,114 @@
+#include "uwgrasp/segment/region_growing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <string>
+
+#include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/segment/merge.hpp"
+
+namespace uwgrasp::segment {
+
+namespace {
+float color_dist2(Rgb8 a, Rgb8 b) {
+  const float dr = float(a.r) - float(b.r), dg = float(a.g) - float(b.g),
+              db = float(a.b) - float(b.b);
+  return dr * dr + dg * dg + db * db;
+}
+
+void check_inputs(const Cloud& c, const RegionConfig& r, const ColorConfig& col) {
+  if (!c.has_normals() || !c.has_curvature())
+    throw Error("region growing needs normals and curvature (compute normals first)");
+  if (col.enabled && !c.has_colors())
+    throw Error("colour region growing needs an RGB cloud (segment.color.enabled = true)");
+  if (r.k < 2) throw Error("segment.region.k must be at least 2, got " + std::to_string(r.k));
+}
+
+// Seed order: points with a finite normal by ascending curvature, ties by index.
+std::vector<std::uint32_t> seed_order(const Cloud& c) {
+  std::vector<std::uint32_t> order;
+  order.reserve(c.size());
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (is_finite(c.normals[i]) && std::isfinite(c.curvature[i]))
+      order.push_back(static_cast<std::uint32_t>(i));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](auto a, auto b) { return c.curvature[a] < c.curvature[b]; });
+  return order;
+}
+
+struct Grower {
+  const Cloud& c;
+  const cloud::Neighbours& nb;
+  const RegionConfig& r;
+  const ColorConfig& col;
+  float cos_angle, dist2, color2;
+  std::vector<std::int32_t>& label;
+  std::vector<std::uint32_t> queue;
+
+  bool joins(std::uint32_t from, std::uint32_t seed, std::uint32_t q, float d2) const {
+    if (dist2 > 0.0f && d2 > dist2) return false;
+    const Eigen::Vector3f& ref = r.smooth_mode ? c.normals[from] : c.normals[seed];
+    if (!(std::abs(ref.dot(c.normals[q])) >= cos_angle)) return false;  // NaN normals fail
+    if (col.enabled && color_dist2(c.colors[from], c.colors[q]) > color2) return false;
+    return true;
+  }
+
+  void grow(std::uint32_t seed, std::int32_t id) {
+    queue.clear();
+    queue.push_back(seed);
+    label[seed] = id;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::uint32_t from = queue[head];
+      const auto idx = nb.of(from);
+      const auto d2 = nb.dists_of(from);
+      for (std::size_t j = 0; j < idx.size(); ++j) {
+        const std::uint32_t q = idx[j];
+        if (label[q] != -1 || !joins(from, seed, q, d2[j])) continue;
+        label[q] = id;
+        if (c.curvature[q] < r.curvature) queue.push_back(q);
+      }
+    }
+  }
+};
+}  // namespace
+
+Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
+                          const ColorConfig& color) {
+  check_inputs(cloud, region, color);
+  Segmentation out;
+  out.label.assign(cloud.size(), -1);
+  if (cloud.empty()) return out;
+  const cloud::KdTree tree(cloud.points);
+  const cloud::Neighbours nb =
+      cloud::knn_all(tree, cloud.points, std::min<std::size_t>(region.k, cloud.size()));
+  const float rad = region.angle_deg * std::numbers::pi_v<float> / 180.0f;
+  Grower g{cloud, nb, region, color, std::cos(rad), region.distance * region.distance,
+           color.point_threshold * color.point_threshold, out.label, {}};
+  std::int32_t count = 0;
+  for (std::uint32_t s : seed_order(cloud))
+    if (out.label[s] == -1) g.grow(s, count++);
+
+  std::uint32_t n = static_cast<std::uint32_t>(count);
+  if (color.enabled) n = merge_regions(cloud, nb, out.label, n, region, color);
+
+  // Keep regions within [min_size, max_size], numbered in order of their first seed.
+  std::vector<std::uint32_t> size(n, 0);
+  for (auto l : out.label)
+    if (l >= 0) ++size[static_cast<std::size_t>(l)];
+  std::vector<std::int32_t> renum(n, -1);
+  for (std::uint32_t s = 0; s < n; ++s)
+    if (size[s] >= region.min_size && size[s] <= region.max_size)
+      renum[s] = static_cast<std::int32_t>(out.segments.size()), out.segments.emplace_back();
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    auto& l = out.label[i];
+    if (l < 0) continue;
+    l = renum[static_cast<std::size_t>(l)];
+    if (l >= 0) out.segments[static_cast<std::size_t>(l)].push_back(static_cast<std::uint32_t>(i));
+  }
+  return out;
+}
+
+}  // namespace uwgrasp::segment

@@ -1,0 +1,42 @@
+#pragma once
+// Region-growing segmentation (thesis 4.2.2), with the optional colour criterion and the
+// distance + mean-colour merging step of the RGB variant.
+#include <cstdint>
+#include <vector>
+
+#include "uwgrasp/core/cloud.hpp"
+
+namespace uwgrasp::segment {
+
+struct RegionConfig {
+  std::uint32_t k = 30;        // neighbours examined around each seed
+  float angle_deg = 15.0f;     // max angle between neighbouring normals (stereo-noise tolerant)
+  float curvature = 0.1f;      // points above this curvature join regions but do not seed them
+  float distance = 0.02f;      // m; neighbours farther than this are not connected (0: no limit)
+  std::uint32_t min_size = 50;        // smaller regions are dropped (or merged, with colour)
+  std::uint32_t max_size = 10000000;  // larger regions are dropped
+  bool smooth_mode = true;  // compare with the expanding point's normal (else the region seed's)
+};
+
+struct ColorConfig {
+  bool enabled = false;
+  float point_threshold = 6.0f;   // max RGB distance (0-255 units) between neighbouring points
+  float region_threshold = 5.0f;  // max distance between the mean colours of merged regions
+  float merge_distance = 0.02f;   // m; regions whose nearest points are closer may merge
+};
+
+struct Segmentation {
+  std::vector<std::int32_t> label;  // per point: segment index or -1
+  std::vector<std::vector<std::uint32_t>> segments;  // ascending point indices per segment
+};
+
+// Regions grow from the unlabelled point of lowest curvature. A neighbour joins the region when
+// its normal is within angle_deg of the expanding point's (|n1.n2| >= cos angle), it lies within
+// `distance`, and (with colour) its colour is within point_threshold; it expands the region
+// further when its curvature is below `curvature`. Needs normals and curvature; with colour
+// enabled, colours. Points with a NaN normal are left out. Deterministic and independent of the
+// thread count. Throws Error for missing attributes.
+Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
+                          const ColorConfig& color);
+
+}  // namespace uwgrasp::segment

@@ -1,0 +1,101 @@
+#include "uwgrasp/segment/select.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::segment {
+
+namespace {
+struct Named {
+  const char* name;
+  std::array<bool, 3> channels;
+};
+constexpr std::array<Named, 6> kColors{{{"red", {true, false, false}},
+                                        {"green", {false, true, false}},
+                                        {"blue", {false, false, true}},
+                                        {"yellow", {true, true, false}},
+                                        {"cyan", {false, true, true}},
+                                        {"magenta", {true, false, true}}}};
+
+const Named& named(const std::string& color) {
+  for (const auto& n : kColors)
+    if (color == n.name) return n;
+  throw Error("unknown colour '" + color + "' (use red, green, blue, yellow, cyan or magenta)");
+}
+}  // namespace
+
+float color_intensity(Rgb8 c, const std::string& color) {
+  const Named& n = named(color);
+  const float v[3] = {c.r / 255.0f, c.g / 255.0f, c.b / 255.0f};
+  float in = 0, out = 0;
+  int nin = 0;
+  for (int i = 0; i < 3; ++i) n.channels[i] ? (in += v[i], ++nin) : (out += v[i], 0);
+  return std::max(0.0f, in / nin - out / (3 - nin));
+}
+
+std::vector<SegmentInfo> describe_segments(const Cloud& cloud, const Segmentation& seg,
+                                           const std::string& color) {
+  named(color);  // validate the name even for colourless clouds
+  std::vector<SegmentInfo> info(seg.segments.size());
+  for (std::size_t s = 0; s < seg.segments.size(); ++s) {
+    const auto& idx = seg.segments[s];
+    SegmentInfo& si = info[s];
+    si.points = idx.size();
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero(), rgb = Eigen::Vector3d::Zero();
+    double inten = 0.0;
+    for (auto i : idx) {
+      sum += cloud.points[i].cast<double>();
+      if (cloud.has_colors()) {
+        const Rgb8 c = cloud.colors[i];
+        rgb += Eigen::Vector3d(c.r, c.g, c.b);
+        inten += color_intensity(c, color);
+      }
+    }
+    const double n = std::max<std::size_t>(1, idx.size());
+    si.centroid = (sum / n).cast<float>();
+    rgb /= n;
+    si.mean_color = {static_cast<std::uint8_t>(std::lround(rgb.x())),
+                     static_cast<std::uint8_t>(std::lround(rgb.y())),
+                     static_cast<std::uint8_t>(std::lround(rgb.z()))};
+    si.intensity = static_cast<float>(inten / n);
+    si.distance = (si.centroid - cloud.viewpoint).norm();
+  }
+  return info;
+}
+
+std::size_t select_object(const std::vector<SegmentInfo>& info, const ObjectConfig& cfg) {
+  if (info.empty()) throw Error("no segments: nothing to select as the object of interest");
+  auto best = [&](auto better) {
+    std::size_t b = 0;
+    for (std::size_t s = 1; s < info.size(); ++s)
+      if (better(info[s], info[b])) b = s;
+    return b;
+  };
+  switch (cfg.by) {
+    case ObjectBy::label:
+      if (cfg.label >= info.size())
+        throw Error("object label:" + std::to_string(cfg.label) + " does not exist (" +
+                    std::to_string(info.size()) + " segments)");
+      return cfg.label;
+    case ObjectBy::nearest:
+      return best([](const auto& a, const auto& b) { return a.distance < b.distance; });
+    case ObjectBy::largest:
+      return best([](const auto& a, const auto& b) { return a.points > b.points; });
+    case ObjectBy::color: {
+      const std::size_t b =
+          best([](const auto& a, const auto& c) { return a.intensity > c.intensity; });
+      if (info[b].intensity < cfg.min_intensity)
+        throw Error("no " + cfg.color + " segment: the most " + cfg.color + " of " +
+                    std::to_string(info.size()) + " segments has intensity " +
+                    std::to_string(info[b].intensity) + " < segment.object.min_intensity " +
+                    std::to_string(cfg.min_intensity));
+      return b;
+    }
+  }
+  throw Error("unknown object selection mode");
+}
+
+}  // namespace uwgrasp::segment

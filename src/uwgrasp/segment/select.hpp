@@ -1,0 +1,42 @@
+#pragma once
+// Object-of-interest selection (thesis 7.4.2): by colour (the segment with the highest intensity
+// of the named colour wins), by segment label, nearest to the camera, or largest.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "uwgrasp/core/cloud.hpp"
+#include "uwgrasp/segment/region_growing.hpp"
+
+namespace uwgrasp::segment {
+
+enum class ObjectBy { color, label, nearest, largest };
+
+struct ObjectConfig {
+  ObjectBy by = ObjectBy::color;
+  std::string color = "red";   // red, green, blue, yellow, cyan, magenta
+  std::uint32_t label = 0;     // segment number, for by = label
+  float min_intensity = 0.15f; // a colour match needs at least this mean intensity (0-1)
+};
+
+struct SegmentInfo {
+  std::size_t points = 0;
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+  Rgb8 mean_color;
+  float intensity = 0.0f;  // mean intensity of the configured colour, 0-1
+  float distance = 0.0f;   // centroid distance from the viewpoint, m
+};
+
+// Intensity of a named colour in an RGB value: mean of the colour's channels minus mean of the
+// others, scaled to [0, 1] and clamped at 0 (pure red scores 1 for "red", grey scores 0).
+// Throws Error for an unknown colour name.
+float color_intensity(Rgb8 c, const std::string& color);
+
+std::vector<SegmentInfo> describe_segments(const Cloud& cloud, const Segmentation& seg,
+                                           const std::string& color);
+
+// Index of the selected segment. Throws Error naming the criterion when nothing matches.
+std::size_t select_object(const std::vector<SegmentInfo>& info, const ObjectConfig& cfg);
+
+}  // namespace uwgrasp::segment
