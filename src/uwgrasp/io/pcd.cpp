@@ -10,6 +10,7 @@
 
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/atomic_file.hpp"
+#include "uwgrasp/io/header_check.hpp"
 #include "uwgrasp/io/pcl_blob.hpp"
 
 namespace uwgrasp::io {
@@ -45,10 +46,12 @@ Cloud load_cloud(const std::string& path) {
   int rc = -1;
   try {
     if (ext == ".pcd") {
+      check_pcd(path);
       pcl::PCDReader reader;
       int version = 0;
       rc = reader.read(path, blob, origin, orientation, version);
     } else if (ext == ".ply") {
+      check_ply(path);
       pcl::PLYReader reader;
       int version = 0;
       rc = reader.read(path, blob, origin, orientation, version);

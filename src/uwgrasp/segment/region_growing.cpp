@@ -77,10 +77,10 @@ struct Grower {
 
 Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
                           const ColorConfig& color) {
-  check_inputs(cloud, region, color);
   Segmentation out;
-  out.label.assign(cloud.size(), -1);
   if (cloud.empty()) return out;
+  check_inputs(cloud, region, color);
+  out.label.assign(cloud.size(), -1);
   const cloud::KdTree tree(cloud.points);
   const cloud::Neighbours nb =
       cloud::knn_all(tree, cloud.points, std::min<std::size_t>(region.k, cloud.size()));

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# CLI contract (INTERFACE.md): bad input -> one line on stderr naming the problem, exit 2, and no
+# output file; --help works everywhere; a good run exits 0 and writes its files.
+set -u
+BIN=$1 DATA=$2 SRC=$3
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fails=0 passes=0
+
+# expect CODE WORD -- ARGS...: exit code CODE, stderr one line containing WORD, nothing in $T/out.
+expect() {
+  local code=$1 word=$2; shift 3
+  rm -rf "$T/out"
+  "$BIN" "$@" >"$T/stdout" 2>"$T/stderr"
+  local got=$? lines
+  lines=$(wc -l <"$T/stderr")
+  if [[ $got -ne $code ]] || { [[ -n $word ]] && ! grep -q -- "$word" "$T/stderr"; } || [[ $lines -gt 1 ]] ||
+     [[ -e "$T/out" && -n "$(ls -A "$T/out" 2>/dev/null)" ]]; then
+    echo "FAIL: uwgrasp $* -> exit $got (want $code), stderr: $(cat "$T/stderr")"
+    fails=$((fails + 1))
+  else
+    passes=$((passes + 1))
+  fi
+}
+
+printf 'VERSION .7\nFIELDS a b\nSIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH 1\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1\nDATA ascii\n1 2\n' >"$T/noxyz.pcd"
+printf 'VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 100\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 100\nDATA binary\n' >"$T/truncated.pcd"
+head -c 64 /dev/urandom >>"$T/truncated.pcd"
+printf 'garbage\n' >"$T/malformed.pcd"
+printf 'preprocess:\n  voxl:\n    leaf: 0.01\n' >"$T/typo.yaml"
+printf 'VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\nnan nan nan\nnan nan nan\n' >"$T/allnan.pcd"
+
+expect 2 "no such file" -- segment "$T/missing.pcd" --out-dir "$T/out"
+expect 2 "truncated.pcd" -- segment "$T/truncated.pcd" --out-dir "$T/out"
+expect 2 "malformed" -- segment "$T/malformed.pcd" --out-dir "$T/out"
+expect 2 "x, y and z" -- segment "$T/noxyz.pcd" --out-dir "$T/out"
+expect 2 "no finite point" -- segment "$T/allnan.pcd" --out-dir "$T/out"
+expect 0 "" -- segment --help
+expect 0 "" -- --help
+expect 2 "" -- segment
+expect 2 "" -- frobnicate
+
+MUG="$DATA/clouds/table_scene_mug_stereo_textured.pcd"
+if [[ -f "$MUG" ]]; then
+  expect 2 "unknown key 'preprocess.voxl'" -- segment "$MUG" --config "$T/typo.yaml" --out-dir "$T/out"
+  expect 2 "preprocess.voxel.leaf" -- segment "$MUG" --set preprocess.voxel.leaf=abc --out-dir "$T/out"
+  expect 2 "out of range" -- segment "$MUG" --set segment.region.k=0 --out-dir "$T/out"
+  # A good run: table printed, one file per segment plus the labelled cloud.
+  if "$BIN" segment "$MUG" --out-dir "$T/good" >"$T/stdout" 2>"$T/stderr" &&
+     grep -q "stage times" "$T/stdout" && [[ -f "$T/good/labelled.pcd" ]] &&
+     [[ -f "$T/good/segment_000.pcd" ]]; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL: good segment run: $(cat "$T/stderr")"; fails=$((fails + 1))
+  fi
+  # Same seed, same files, whatever the thread count.
+  "$BIN" segment "$MUG" --threads 1 --out-dir "$T/t1" >/dev/null 2>&1
+  "$BIN" segment "$MUG" --threads 2 --out-dir "$T/t2" >/dev/null 2>&1
+  if diff -r "$T/t1" "$T/t2" >/dev/null; then passes=$((passes + 1)); else
+    echo "FAIL: outputs differ between 1 and 2 threads"; fails=$((fails + 1)); fi
+else
+  echo "skipped the real-data CLI cases: $MUG not found"
+fi
+# config/default.yaml is what `uwgrasp config` prints.
+if diff <("$BIN" config) "$SRC/config/default.yaml" >/dev/null; then passes=$((passes + 1)); else
+  echo "FAIL: config/default.yaml differs from 'uwgrasp config'"; fails=$((fails + 1)); fi
+
+echo "$passes passed, $fails failed"
+[[ $fails -eq 0 ]]

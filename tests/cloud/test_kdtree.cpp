@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "shapes.hpp"
+#include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::cloud {
+
+namespace {
+Cloud random_cloud(int n, std::uint64_t seed) {
+  Cloud c;
+  Rng r(seed);
+  for (int i = 0; i < n; ++i) c.points.emplace_back(r.uniform(), r.uniform(), 0.2 * r.uniform());
+  make_unorganised(c);
+  return c;
+}
+}  // namespace
+
+TEST(KdTree, KnnMatchesBruteForce) {
+  const Cloud c = random_cloud(3000, 1);
+  const KdTree tree(c.points);
+  Rng r(2);
+  for (int q = 0; q < 200; ++q) {
+    const Eigen::Vector3f p(r.uniform(), r.uniform(), 0.2 * r.uniform());
+    std::vector<float> brute;
+    for (const auto& x : c.points) brute.push_back((x - p).squaredNorm());
+    std::sort(brute.begin(), brute.end());
+    std::uint32_t idx[12];
+    float d2[12];
+    ASSERT_EQ(tree.knn(p, 12, idx, d2), 12u);
+    for (int j = 0; j < 12; ++j) {
+      EXPECT_FLOAT_EQ(d2[j], brute[j]);
+      EXPECT_FLOAT_EQ((c.points[idx[j]] - p).squaredNorm(), d2[j]);
+    }
+  }
+}
+
+TEST(KdTree, RadiusMatchesBruteForce) {
+  const Cloud c = random_cloud(2000, 3);
+  const KdTree tree(c.points);
+  std::vector<std::pair<std::uint32_t, float>> hits;
+  for (std::size_t q = 0; q < 100; ++q) {
+    const Eigen::Vector3f p = c.points[q * 7];
+    tree.radius(p, 0.05f, hits);
+    std::vector<std::uint32_t> brute;
+    for (std::size_t i = 0; i < c.size(); ++i)
+      if ((c.points[i] - p).squaredNorm() <= 0.05f * 0.05f) brute.push_back(std::uint32_t(i));
+    std::vector<std::uint32_t> got;
+    for (auto& h : hits) got.push_back(h.first);
+    EXPECT_TRUE(std::is_sorted(hits.begin(), hits.end(),
+                               [](auto& a, auto& b) { return a.second < b.second; }));
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, brute);
+  }
+}
+
+TEST(KdTree, KnnAllIsIndependentOfThreadsAndFindsSelfFirst) {
+  const Cloud c = random_cloud(5000, 4);
+  const KdTree tree(c.points);
+  const Neighbours nb = knn_all(tree, c.points, 8);
+  for (std::size_t i = 0; i < c.size(); i += 97) {
+    ASSERT_EQ(nb.count[i], 8u);
+    EXPECT_EQ(nb.sq_dists[i * 8], 0.0f);
+  }
+}
+
+TEST(KdTree, DegenerateInputs) {
+  Cloud empty;
+  const KdTree t0(empty.points);
+  std::uint32_t idx[3];
+  float d2[3];
+  EXPECT_EQ(t0.knn({0, 0, 0}, 3, idx, d2), 0u);
+  Cloud one;
+  one.points.emplace_back(1, 2, 3);
+  const KdTree t1(one.points);
+  EXPECT_EQ(t1.knn({0, 0, 0}, 3, idx, d2), 1u);
+  Cloud bad;
+  bad.points.emplace_back(std::nanf(""), 0, 0);
+  EXPECT_THROW(KdTree t(bad.points), Error);
+}
+
+}  // namespace uwgrasp::cloud

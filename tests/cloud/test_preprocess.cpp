@@ -1,0 +1,73 @@
+#include <gtest/gtest.h>
+
+#include "shapes.hpp"
+#include "uwgrasp/cloud/preprocess.hpp"
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::cloud {
+
+namespace {
+// A floor 1.5 m below the camera (y down) with a 10 cm box on it, plus NaNs and a far point.
+Cloud floor_scene() {
+  Cloud c;
+  for (float x = -1; x <= 1; x += 0.01f)
+    for (float z = 1; z <= 3; z += 0.01f) c.points.emplace_back(x, 1.5f, z);
+  test::append(c, test::box_surface({-0.05f, 1.4f, 1.95f}, {0.05f, 1.4999f, 2.05f}, 0.005f));
+  c.points.emplace_back(std::nanf(""), 0.f, 0.f);
+  c.points.emplace_back(0.f, 0.f, 9.f);
+  make_unorganised(c);
+  return c;
+}
+}  // namespace
+
+TEST(Preprocess, RemovesTheFloorAndKeepsTheBox) {
+  const Cloud c = floor_scene();
+  StageTimer t;
+  const Preprocessed p = preprocess(c, {}, 1, t);
+  EXPECT_EQ(p.counts.input, c.size());
+  EXPECT_EQ(p.counts.finite, c.size() - 1);
+  EXPECT_EQ(p.counts.in_range, c.size() - 2);  // 9 m is beyond the 6 m limit
+  ASSERT_TRUE(p.plane.found);
+  EXPECT_LT(test::angle_deg(p.plane.coefficients.head<3>(), {0, -1, 0}), 0.1);
+  EXPECT_NEAR(p.plane.coefficients[3], 1.5f, 1e-3f);
+  // What is left is the box above the floor (more than the plane tolerance away).
+  ASSERT_GT(p.cloud.size(), 500u);
+  for (const auto& q : p.cloud.points) EXPECT_LT(q.y(), 1.5f - 0.009f);
+  EXPECT_EQ(p.cloud.normals.size(), p.cloud.size());
+  // The map from input to output is consistent.
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const auto m = p.output_of_input[i];
+    if (m >= 0) {
+      EXPECT_EQ(p.cloud.points[std::size_t(m)], c.points[i]);
+    }
+    if (p.plane_of_input[i]) {
+      EXPECT_EQ(m, -1);
+    }
+  }
+  for (const char* s : {"finite", "range", "outliers", "plane", "normals"})
+    EXPECT_GT(t.ms(s) + 1e-9, 0.0) << s;
+}
+
+TEST(Preprocess, BadInputsNameTheProblem) {
+  StageTimer t;
+  EXPECT_THROW(preprocess(Cloud{}, {}, 1, t), Error);
+  Cloud nan;
+  nan.points.assign(50, Eigen::Vector3f::Constant(std::nanf("")));
+  make_unorganised(nan);
+  try {
+    preprocess(nan, {}, 1, t);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("finite"), std::string::npos);
+  }
+  Cloud far;
+  far.points.assign(10, Eigen::Vector3f(0, 0, 50));
+  make_unorganised(far);
+  EXPECT_THROW(preprocess(far, {}, 1, t), Error);
+  PreprocessConfig need_plane;
+  need_plane.plane.required = true;
+  need_plane.plane.distance = 0.001f;  // no 2 mm slab holds 5 % of a 20 cm sphere
+  EXPECT_THROW(preprocess(test::sphere(2000, 0.2f, {0, 0, 2}), need_plane, 1, t), Error);
+}
+
+}  // namespace uwgrasp::cloud

@@ -1,0 +1,78 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/io/config.hpp"
+
+namespace uwgrasp::io {
+
+namespace {
+std::string error_of(const std::string& yaml, const std::vector<std::string>& sets = {}) {
+  try {
+    parse_config(yaml, "test.yaml", sets);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(Config, DefaultYamlMirrorsTheCompiledDefaults) {
+  std::ifstream f(std::string(UWGRASP_SOURCE_DIR) + "/config/default.yaml");
+  ASSERT_TRUE(f) << "config/default.yaml missing";
+  std::stringstream s;
+  s << f.rdbuf();
+  const Config from_file = parse_config(s.str(), "default.yaml");
+  EXPECT_EQ(to_yaml(from_file), to_yaml(Config{}));
+  EXPECT_EQ(to_json(from_file), to_json(Config{}));
+}
+
+TEST(Config, ValuesRoundTripThroughYaml) {
+  Config c;
+  c.seed = 12345678901234ULL;
+  c.preprocess.voxel.leaf = 0.004f;
+  c.preprocess.plane.enabled = false;
+  c.segment.object.by = segment::ObjectBy::largest;
+  c.segment.object.color = "yellow";
+  const Config back = parse_config(to_yaml(c), "x");
+  EXPECT_EQ(to_yaml(back), to_yaml(c));
+  EXPECT_EQ(back.segment.object.by, segment::ObjectBy::largest);
+  EXPECT_FLOAT_EQ(back.preprocess.voxel.leaf, 0.004f);
+  EXPECT_EQ(to_json(c)["preprocess"]["voxel"]["leaf"], 0.004);
+}
+
+TEST(Config, ErrorsNameFileAndKey) {
+  EXPECT_NE(error_of("preprocess:\n  voxl:\n    leaf: 1\n").find("unknown key 'preprocess.voxl'"), std::string::npos);
+  EXPECT_NE(error_of("preprocess:\n  voxel:\n    leaf: abc\n").find("preprocess.voxel.leaf: expected a number"), std::string::npos);
+  EXPECT_NE(error_of("preprocess:\n  voxel:\n    leaf: -1\n").find("out of range"), std::string::npos);
+  EXPECT_NE(error_of("segment:\n  region:\n    k: 2.5\n").find("expected an integer"), std::string::npos);
+  EXPECT_NE(error_of("segment:\n  object:\n    by: smallest\n").find("not one of"), std::string::npos);
+  EXPECT_NE(error_of("preprocess:\n  plane:\n    refine: maybe\n").find("true or false"), std::string::npos);
+  EXPECT_NE(error_of("seed: -3\n").find("seed"), std::string::npos);
+  EXPECT_NE(error_of("preprocess: [1, 2]\n").find("expected a section"), std::string::npos);
+  EXPECT_NE(error_of("a: [\n").find("not valid YAML"), std::string::npos);
+  EXPECT_NE(error_of("").find(""), std::string::npos);
+  EXPECT_EQ(error_of(""), "");  // an empty file means all defaults
+  for (const auto& e : {error_of("preprocess:\n  voxl: 1\n"), error_of("seed: x")})
+    EXPECT_NE(e.find("test.yaml"), std::string::npos) << e;
+}
+
+TEST(Config, SetOverridesApplyAfterTheFile) {
+  const Config c = parse_config("preprocess:\n  voxel:\n    leaf: 0.01\n", "x",
+                                {"preprocess.voxel.leaf=0.02", "segment.region.k=12", "seed=7"});
+  EXPECT_FLOAT_EQ(c.preprocess.voxel.leaf, 0.02f);
+  EXPECT_EQ(c.segment.region.k, 12u);
+  EXPECT_EQ(c.seed, 7u);
+  EXPECT_NE(error_of("", {"preprocess.voxel.lef=1"}).find("unknown key 'preprocess.voxel.lef'"), std::string::npos);
+  EXPECT_NE(error_of("", {"novalue"}).find("section.key=value"), std::string::npos);
+  EXPECT_NE(error_of("", {"segment.region.k=-1"}).find("--set"), std::string::npos);
+}
+
+TEST(Config, MissingFile) {
+  EXPECT_THROW(load_config("/nonexistent/uwgrasp.yaml"), Error);
+  EXPECT_EQ(load_config("", {"threads=2"}).threads, 2u);
+}
+
+}  // namespace uwgrasp::io
