@@ -20,8 +20,8 @@ struct SegmentOptions {
 void print_table(const std::string& name, const segment::Scene& s, long selected,
                  const std::string& color) {
   const auto& c = s.pre.counts;
-  std::printf("%s: %zu points in, %zu finite, %zu in range, %zu after outliers, %zu voxels\n",
-              name.c_str(), c.input, c.finite, c.in_range, c.inliers_kept, c.voxels);
+  std::printf("%s: %zu points in, %zu finite, %zu in range, %zu after the voxel grid\n",
+              name.c_str(), c.input, c.finite, c.in_range, c.voxels);
   if (s.pre.plane.found) {
     const auto& m = s.pre.plane.coefficients;
     std::printf("plane: %zu inliers removed, n = (%.4f, %.4f, %.4f), d = %.4f m\n", c.plane, m[0],
@@ -29,7 +29,8 @@ void print_table(const std::string& name, const segment::Scene& s, long selected
   } else {
     std::printf("plane: none found\n");
   }
-  std::printf("%zu points segmented into %zu segments\n\n", c.output, s.info.size());
+  std::printf("%zu points after outlier removal, segmented into %zu segments\n\n", c.output,
+              s.info.size());
   std::printf("  seg   points   centroid x      y      z (m)   mean r   g   b   %s\n",
               color.c_str());
   for (std::size_t i = 0; i < s.info.size(); ++i) {

@@ -40,7 +40,7 @@ TEST(Pipeline, RecordsEveryStage) {
   const Scene s = segment_scene(c, {}, {}, 1);
   std::vector<std::string> names;
   for (const auto& st : s.timer.stages()) names.push_back(st.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"finite", "range", "outliers", "plane", "normals",
+  EXPECT_EQ(names, (std::vector<std::string>{"finite", "range", "plane", "outliers", "normals",
                                              "segment"}));
   EXPECT_EQ(s.info.size(), s.segmentation.segments.size());
 }

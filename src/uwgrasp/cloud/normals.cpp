@@ -37,6 +37,22 @@ PointNormal normal_from(std::span<const Eigen::Vector3f> points,
   return out;
 }
 
+void compute_normals(Cloud& cloud, const NormalConfig& cfg, const Neighbours& nb) {
+  if (cfg.radius > 0.0f || nb.k < cfg.k || nb.count.size() != cloud.size())
+    throw Error("normals: the shared neighbour lists do not fit this cloud");
+  cloud.normals.resize(cloud.size());
+  cloud.curvature.resize(cloud.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1024), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const auto all = nb.of(i);
+      const PointNormal pn = normal_from(cloud.points, all.first(std::min<std::size_t>(all.size(), cfg.k)),
+                                         cloud.points[i], cloud.viewpoint);
+      cloud.normals[i] = pn.normal;
+      cloud.curvature[i] = pn.curvature;
+    }
+  });
+}
+
 void compute_normals(Cloud& cloud, const NormalConfig& cfg) {
   if (cfg.radius <= 0.0f && cfg.k < 3)
     throw Error("normals: k must be at least 3, got " + std::to_string(cfg.k));

@@ -23,7 +23,7 @@ void require_points(const Cloud& c, const char* stage) {
 }  // namespace
 
 Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed,
-                        StageTimer& timer) {
+                        StageTimer& timer, std::size_t share_k) {
   check_consistent(in, "input cloud");
   Preprocessed out;
   out.counts.input = in.size();
@@ -47,14 +47,6 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
     require_points(cur, "range");
   }
   out.counts.in_range = cur.size();
-
-  if (cfg.outliers.enabled) {
-    timer.start("outliers");
-    Filtered o = remove_outliers(cur, cfg.outliers);
-    remap_filtered(out.output_of_input, o.indices, cur.size());
-    cur = std::move(o.cloud);
-  }
-  out.counts.inliers_kept = cur.size();
 
   if (cfg.voxel.enabled) {
     timer.start("voxel");
@@ -89,8 +81,23 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
     }
   }
 
+  if (cfg.outliers.enabled) {
+    timer.start("outliers");
+    Filtered o = remove_outliers(cur, cfg.outliers);
+    remap_filtered(out.output_of_input, o.indices, cur.size());
+    cur = std::move(o.cloud);
+  }
+  out.counts.after_outliers = cur.size();
+
   timer.start("normals");
-  compute_normals(cur, cfg.normals);
+  if (cfg.normals.radius > 0.0f || cur.empty()) {
+    compute_normals(cur, cfg.normals);
+  } else {
+    const KdTree tree(cur.points);
+    const std::size_t k = std::min<std::size_t>(std::max<std::size_t>(cfg.normals.k, share_k), cur.size());
+    out.neighbours = knn_all(tree, cur.points, k);
+    compute_normals(cur, cfg.normals, out.neighbours);
+  }
   timer.stop();
   out.counts.output = cur.size();
   out.cloud = std::move(cur);

@@ -1,6 +1,8 @@
 #pragma once
 // The thesis's chapter-4 preprocessing chain as one thin composition of the cloud/ stages:
-// invalid values -> range crop -> outliers -> voxel grid -> plane removal -> normals.
+// invalid values -> range crop -> voxel grid -> plane removal -> outliers -> normals.
+// Outliers come after the plane: RANSAC is robust to them by design (4.1.4), and the statistics
+// then describe the points that matter, at a fraction of the cost of a kNN over the seafloor.
 #include <cstdint>
 #include <vector>
 
@@ -22,7 +24,7 @@ struct PreprocessConfig {
 };
 
 struct PreprocessCounts {
-  std::size_t input = 0, finite = 0, in_range = 0, inliers_kept = 0, voxels = 0, plane = 0,
+  std::size_t input = 0, finite = 0, in_range = 0, voxels = 0, plane = 0, after_outliers = 0,
               output = 0;
 };
 
@@ -34,12 +36,16 @@ struct Preprocessed {
   std::vector<char> plane_of_input;
   PlaneResult plane;  // coefficients; inliers refer to the cloud the plane stage saw
   PreprocessCounts counts;
+  // The kNN lists the normals were computed from (k = max(normals.k, share_k)), for later
+  // stages on the same cloud; empty in radius mode.
+  Neighbours neighbours;
 };
 
 // Runs the chain; each stage's time is recorded in `timer` under its own name ("finite",
-// "range", "outliers", "voxel", "plane", "normals"). Throws Error when the input has no finite
+// "range", "voxel", "plane", "outliers", "normals"). Throws Error when the input has no finite
 // point, when nothing survives a stage, or when a plane is required and none is found.
+// share_k > normals.k keeps that many neighbours per point in the result.
 Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed,
-                        StageTimer& timer);
+                        StageTimer& timer, std::size_t share_k = 0);
 
 }  // namespace uwgrasp::cloud

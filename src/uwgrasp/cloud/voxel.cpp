@@ -102,8 +102,13 @@ VoxelResult voxel_grid(const Cloud& in, const VoxelConfig& cfg) {
   const std::vector<std::uint64_t> keys = voxel_keys(in, cfg.leaf);
   SlotTable table(in.size());
   std::vector<std::uint32_t> slot_of(in.size(), VoxelResult::kDropped);
-  for (std::size_t i = 0; i < in.size(); ++i)
-    if (keys[i] != kNoKey) slot_of[i] = table.slot(keys[i]);
+  std::uint64_t last_key = kNoKey;
+  std::uint32_t last_slot = 0;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    if (keys[i] == kNoKey) continue;
+    if (keys[i] != last_key) last_key = keys[i], last_slot = table.slot(keys[i]);  // scans are coherent
+    slot_of[i] = last_slot;
+  }
   const std::size_t nslots = table.keys_in_order().size();
   std::vector<Accum> acc(nslots);
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> labels;

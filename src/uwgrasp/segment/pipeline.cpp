@@ -5,9 +5,11 @@ namespace uwgrasp::segment {
 Scene segment_scene(const Cloud& input, const cloud::PreprocessConfig& pre,
                     const SegmentConfig& seg, std::uint64_t seed) {
   Scene s;
-  s.pre = cloud::preprocess(input, pre, seed, s.timer);
+  s.pre = cloud::preprocess(input, pre, seed, s.timer, seg.region.k);
   s.timer.start("segment");
-  s.segmentation = grow_regions(s.pre.cloud, seg.region, seg.color);
+  s.segmentation = s.pre.neighbours.count.empty()
+                       ? grow_regions(s.pre.cloud, seg.region, seg.color)
+                       : grow_regions(s.pre.cloud, seg.region, seg.color, s.pre.neighbours);
   s.info = describe_segments(s.pre.cloud, s.segmentation, seg.object.color);
   s.timer.stop();
   return s;

@@ -17,7 +17,7 @@ struct Scene {
   cloud::Preprocessed pre;          // the processed cloud and where each input point went
   Segmentation segmentation;        // over pre.cloud
   std::vector<SegmentInfo> info;    // per segment
-  StageTimer timer;                 // finite, range, outliers, voxel, plane, normals, segment
+  StageTimer timer;                 // finite, range, voxel, plane, outliers, normals, segment
 };
 
 Scene segment_scene(const Cloud& input, const cloud::PreprocessConfig& pre,

@@ -28,6 +28,21 @@ void check_inputs(const Cloud& c, const RegionConfig& r, const ColorConfig& col)
 }
 
 // Seed order: points with a finite normal by ascending curvature, ties by index.
+// The first k entries of each list (lists are nearest first).
+cloud::Neighbours truncate(const cloud::Neighbours& in, std::size_t k) {
+  if (in.k <= k) return in;
+  cloud::Neighbours out;
+  out.k = k;
+  const std::size_t n = in.count.size();
+  out.indices.resize(n * k), out.sq_dists.resize(n * k), out.count.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.count[i] = std::min<std::uint32_t>(in.count[i], std::uint32_t(k));
+    std::copy_n(&in.indices[i * in.k], out.count[i], &out.indices[i * k]);
+    std::copy_n(&in.sq_dists[i * in.k], out.count[i], &out.sq_dists[i * k]);
+  }
+  return out;
+}
+
 std::vector<std::uint32_t> seed_order(const Cloud& c) {
   std::vector<std::uint32_t> order;
   order.reserve(c.size());
@@ -77,13 +92,22 @@ struct Grower {
 
 Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
                           const ColorConfig& color) {
+  if (cloud.empty()) return {};
+  check_inputs(cloud, region, color);
+  const cloud::KdTree tree(cloud.points);
+  return grow_regions(cloud, region, color,
+                      cloud::knn_all(tree, cloud.points, std::min<std::size_t>(region.k, cloud.size())));
+}
+
+Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
+                          const ColorConfig& color, const cloud::Neighbours& all) {
   Segmentation out;
   if (cloud.empty()) return out;
   check_inputs(cloud, region, color);
+  if (all.count.size() != cloud.size() || (all.k < region.k && all.k < cloud.size()))
+    throw Error("region growing: the shared neighbour lists do not fit this cloud");
   out.label.assign(cloud.size(), -1);
-  const cloud::KdTree tree(cloud.points);
-  const cloud::Neighbours nb =
-      cloud::knn_all(tree, cloud.points, std::min<std::size_t>(region.k, cloud.size()));
+  const cloud::Neighbours nb = truncate(all, region.k);
   const float rad = region.angle_deg * std::numbers::pi_v<float> / 180.0f;
   Grower g{cloud, nb, region, color, std::cos(rad), region.distance * region.distance,
            color.point_threshold * color.point_threshold, out.label, {}};

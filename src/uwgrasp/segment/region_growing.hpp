@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "uwgrasp/cloud/kdtree.hpp"
 #include "uwgrasp/core/cloud.hpp"
 
 namespace uwgrasp::segment {
@@ -38,5 +39,8 @@ struct Segmentation {
 // thread count. Throws Error for missing attributes.
 Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
                           const ColorConfig& color);
+// The same with neighbour lists already computed for this cloud (nb.k >= region.k).
+Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
+                          const ColorConfig& color, const cloud::Neighbours& nb);
 
 }  // namespace uwgrasp::segment
