@@ -20,7 +20,9 @@ TEST(Select, ColourIntensity) {
   EXPECT_FLOAT_EQ(color_intensity({128, 128, 128}, "red"), 0.0f);
   EXPECT_FLOAT_EQ(color_intensity({0, 255, 0}, "red"), 0.0f);
   EXPECT_FLOAT_EQ(color_intensity({255, 255, 0}, "yellow"), 1.0f);
-  EXPECT_NEAR(color_intensity({200, 100, 50}, "red"), (200 - 75) / 255.0f, 1e-6f);
+  EXPECT_FLOAT_EQ(color_intensity({255, 255, 0}, "red"), 0.0f);  // yellow is not red
+  EXPECT_NEAR(color_intensity({200, 100, 50}, "red"), 100 / 255.0f, 1e-6f);
+  EXPECT_NEAR(color_intensity({200, 180, 40}, "yellow"), 140 / 255.0f, 1e-6f);
   EXPECT_THROW(color_intensity({1, 2, 3}, "mauve"), Error);
 }
 

@@ -30,10 +30,10 @@ const Named& named(const std::string& color) {
 float color_intensity(Rgb8 c, const std::string& color) {
   const Named& n = named(color);
   const float v[3] = {c.r / 255.0f, c.g / 255.0f, c.b / 255.0f};
-  float in = 0, out = 0;
-  int nin = 0;
-  for (int i = 0; i < 3; ++i) n.channels[i] ? (in += v[i], ++nin) : (out += v[i], 0);
-  return std::max(0.0f, in / nin - out / (3 - nin));
+  float weakest_in = 1.0f, strongest_out = 0.0f;
+  for (int i = 0; i < 3; ++i)
+    n.channels[i] ? weakest_in = std::min(weakest_in, v[i]) : strongest_out = std::max(strongest_out, v[i]);
+  return std::max(0.0f, weakest_in - strongest_out);
 }
 
 std::vector<SegmentInfo> describe_segments(const Cloud& cloud, const Segmentation& seg,

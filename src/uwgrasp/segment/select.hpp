@@ -28,8 +28,8 @@ struct SegmentInfo {
   float distance = 0.0f;   // centroid distance from the viewpoint, m
 };
 
-// Intensity of a named colour in an RGB value: mean of the colour's channels minus mean of the
-// others, scaled to [0, 1] and clamped at 0 (pure red scores 1 for "red", grey scores 0).
+// Intensity of a named colour in an RGB value: the weakest of the colour's channels minus the
+// strongest of the others, in [0, 1] (pure red scores 1 for "red"; grey and yellow score 0).
 // Throws Error for an unknown colour name.
 float color_intensity(Rgb8 c, const std::string& color);
 
