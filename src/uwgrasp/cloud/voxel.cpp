@@ -4,12 +4,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <string>
-#include <unordered_map>
 
 #include "uwgrasp/core/error.hpp"
 
@@ -18,39 +17,28 @@ namespace uwgrasp::cloud {
 namespace {
 constexpr std::uint64_t kNoKey = std::numeric_limits<std::uint64_t>::max();
 
-// Open-addressing map from voxel key to a dense slot number, in first-seen order.
-class SlotTable {
- public:
-  explicit SlotTable(std::size_t n) : mask_(std::bit_ceil(std::max<std::size_t>(16, 2 * n)) - 1) {
-    keys_.assign(mask_ + 1, kNoKey);
-    slots_.resize(mask_ + 1);
-  }
-  std::uint32_t slot(std::uint64_t key) {
-    std::size_t h = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 20) & mask_;
-    while (keys_[h] != kNoKey && keys_[h] != key) h = (h + 1) & mask_;
-    if (keys_[h] == kNoKey) {
-      keys_[h] = key;
-      slots_[h] = static_cast<std::uint32_t>(order_.size());
-      order_.push_back(key);
+// Stable LSD radix sort of (key, index) pairs on the low `bits` bits of the keys, 11 bits per
+// pass: equal keys keep ascending input order, so sums run in a fixed order. All digit
+// histograms come from one read pass; a pass whose digit is the same for every key is skipped.
+void radix_sort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& idx, int bits) {
+  const int passes = (bits + 10) / 11;
+  std::vector<std::array<std::uint32_t, 2049>> hist(passes, std::array<std::uint32_t, 2049>{});
+  for (auto k : keys)
+    for (int p = 0; p < passes; ++p) ++hist[p][((k >> (11 * p)) & 2047) + 1];
+  std::vector<std::uint64_t> k2(keys.size());
+  std::vector<std::uint32_t> i2(idx.size());
+  for (int p = 0; p < passes; ++p) {
+    const int shift = 11 * p;
+    auto& start = hist[p];
+    if (std::find(start.begin(), start.end(), keys.size()) != start.end()) continue;
+    for (std::size_t d = 1; d < start.size(); ++d) start[d] += start[d - 1];
+    for (std::size_t j = 0; j < keys.size(); ++j) {
+      const std::uint32_t to = start[(keys[j] >> shift) & 2047]++;
+      k2[to] = keys[j], i2[to] = idx[j];
     }
-    return slots_[h];
+    keys.swap(k2), idx.swap(i2);
   }
-  const std::vector<std::uint64_t>& keys_in_order() const { return order_; }
-
- private:
-  std::size_t mask_;
-  std::vector<std::uint64_t> keys_;
-  std::vector<std::uint32_t> slots_;
-  std::vector<std::uint64_t> order_;
-};
-
-struct Accum {
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  double curv = 0.0;
-  std::uint32_t rgb[3] = {0, 0, 0};
-  std::uint32_t count = 0;
-};
+}
 
 std::uint32_t majority(std::vector<std::uint32_t>& labels) {
   std::sort(labels.begin(), labels.end());
@@ -99,61 +87,52 @@ std::vector<std::uint64_t> voxel_keys(const Cloud& in, float leaf) {
 VoxelResult voxel_grid(const Cloud& in, const VoxelConfig& cfg) {
   if (!(cfg.leaf > 0.0f) || !std::isfinite(cfg.leaf))
     throw Error("voxel grid: leaf must be > 0, got " + std::to_string(cfg.leaf));
-  const std::vector<std::uint64_t> keys = voxel_keys(in, cfg.leaf);
-  SlotTable table(in.size());
-  std::vector<std::uint32_t> slot_of(in.size(), VoxelResult::kDropped);
-  std::uint64_t last_key = kNoKey;
-  std::uint32_t last_slot = 0;
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    if (keys[i] == kNoKey) continue;
-    if (keys[i] != last_key) last_key = keys[i], last_slot = table.slot(keys[i]);  // scans are coherent
-    slot_of[i] = last_slot;
-  }
-  const std::size_t nslots = table.keys_in_order().size();
-  std::vector<Accum> acc(nslots);
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> labels;
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    const std::uint32_t s = slot_of[i];
-    if (s == VoxelResult::kDropped) continue;
-    Accum& a = acc[s];
-    a.p += in.points[i].cast<double>();
-    if (in.has_normals() && is_finite(in.normals[i])) a.n += in.normals[i].cast<double>();
-    if (in.has_curvature() && std::isfinite(in.curvature[i])) a.curv += in.curvature[i];
-    if (in.has_colors()) a.rgb[0] += in.colors[i].r, a.rgb[1] += in.colors[i].g, a.rgb[2] += in.colors[i].b;
-    if (in.has_labels()) labels[s].push_back(in.labels[i]);
-    ++a.count;
-  }
-  // Output order: by voxel key, as PCL's sorted voxel indices.
-  std::vector<std::uint32_t> order(nslots);
-  std::iota(order.begin(), order.end(), 0u);
-  const auto& skeys = table.keys_in_order();
-  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return skeys[a] < skeys[b]; });
-  std::vector<std::uint32_t> out_of_slot(nslots, VoxelResult::kDropped);
+  const std::vector<std::uint64_t> all_keys = voxel_keys(in, cfg.leaf);
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint32_t> idx;
+  keys.reserve(in.size()), idx.reserve(in.size());
+  std::uint64_t max_key = 0;
+  for (std::size_t i = 0; i < in.size(); ++i)
+    if (all_keys[i] != kNoKey)
+      keys.push_back(all_keys[i]), idx.push_back(std::uint32_t(i)), max_key = std::max(max_key, all_keys[i]);
+  radix_sort(keys, idx, std::max(1, int(std::bit_width(max_key))));
   VoxelResult res;
+  res.voxel_of.assign(in.size(), VoxelResult::kDropped);
   Cloud& out = res.cloud;
   out.viewpoint = in.viewpoint;
-  for (std::uint32_t s : order) {
-    const Accum& a = acc[s];
-    if (a.count < std::max<std::uint32_t>(1, cfg.min_points)) continue;
-    out_of_slot[s] = static_cast<std::uint32_t>(out.points.size());
-    const double c = a.count;
-    out.points.push_back((a.p / c).cast<float>());
+  std::vector<std::uint32_t> run_labels;
+  // Each run of equal keys is one voxel, already in PCL's order (ascending voxel index).
+  for (std::size_t a = 0, b = 0; a < keys.size(); a = b) {
+    while (b < keys.size() && keys[b] == keys[a]) ++b;
+    if (b - a < std::max<std::uint32_t>(1, cfg.min_points)) continue;
+    const auto o = static_cast<std::uint32_t>(out.points.size());
+    Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
+    double curv = 0.0, rgb[3] = {0, 0, 0};
+    run_labels.clear();
+    for (std::size_t j = a; j < b; ++j) {
+      const std::uint32_t i = idx[j];
+      res.voxel_of[i] = o;
+      p += in.points[i].cast<double>();
+      if (in.has_normals() && is_finite(in.normals[i])) n += in.normals[i].cast<double>();
+      if (in.has_curvature() && std::isfinite(in.curvature[i])) curv += in.curvature[i];
+      if (in.has_colors()) rgb[0] += in.colors[i].r, rgb[1] += in.colors[i].g, rgb[2] += in.colors[i].b;
+      if (in.has_labels()) run_labels.push_back(in.labels[i]);
+    }
+    const double c = double(b - a);
+    out.points.push_back((p / c).cast<float>());
     if (in.has_normals()) {
-      const double len = a.n.norm();
-      out.normals.push_back(len > 0 ? Eigen::Vector3f((a.n / len).cast<float>())
+      const double len = n.norm();
+      out.normals.push_back(len > 0 ? Eigen::Vector3f((n / len).cast<float>())
                                     : Eigen::Vector3f::Constant(std::nanf("")));
     }
-    if (in.has_curvature()) out.curvature.push_back(static_cast<float>(a.curv / c));
+    if (in.has_curvature()) out.curvature.push_back(static_cast<float>(curv / c));
     if (in.has_colors()) {
-      auto avg = [&](int ch) { return static_cast<std::uint8_t>(std::lround(a.rgb[ch] / c)); };
+      auto avg = [&](int ch) { return static_cast<std::uint8_t>(std::lround(rgb[ch] / c)); };
       out.colors.push_back({avg(0), avg(1), avg(2)});
     }
-    if (in.has_labels()) out.labels.push_back(majority(labels[s]));
+    if (in.has_labels()) out.labels.push_back(majority(run_labels));
   }
   make_unorganised(out);
-  res.voxel_of.resize(in.size(), VoxelResult::kDropped);
-  for (std::size_t i = 0; i < in.size(); ++i)
-    if (slot_of[i] != VoxelResult::kDropped) res.voxel_of[i] = out_of_slot[slot_of[i]];
   return res;
 }
 
