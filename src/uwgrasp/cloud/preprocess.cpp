@@ -16,6 +16,49 @@ void remap_filtered(std::vector<std::int32_t>& map, const std::vector<std::uint3
     if (m >= 0) m = pos[static_cast<std::size_t>(m)];
 }
 
+// Applies a filter's result to the running cloud and the input map.
+void apply(Filtered&& f, Cloud& cur, std::vector<std::int32_t>& map) {
+  remap_filtered(map, f.indices, cur.size());
+  cur = std::move(f.cloud);
+}
+
+void remove_plane(Cloud& cur, const PreprocessConfig& cfg, std::uint64_t seed, Preprocessed& out) {
+  out.plane = fit_plane(cur, cfg.plane, seed);
+  if (!out.plane.found && cfg.plane.required)
+    throw Error("preprocess: no plane found (preprocess.plane.distance = " +
+                std::to_string(cfg.plane.distance) + " m)");
+  if (!out.plane.found) return;
+  std::vector<char> keep(cur.size(), 1);
+  for (auto i : out.plane.inliers) keep[i] = 0;
+  for (std::size_t i = 0; i < out.output_of_input.size(); ++i) {
+    const auto m = out.output_of_input[i];
+    if (m >= 0 && !keep[static_cast<std::size_t>(m)]) out.plane_of_input[i] = 1;
+  }
+  apply(keep_if(cur, keep), cur, out.output_of_input);
+  out.counts.plane = out.plane.inliers.size();
+}
+
+void voxelise(Cloud& cur, const VoxelConfig& cfg, std::vector<std::int32_t>& map) {
+  VoxelResult v = voxel_grid(cur, cfg);
+  for (auto& m : map)
+    if (m >= 0) {
+      const std::uint32_t to = v.voxel_of[static_cast<std::size_t>(m)];
+      m = to == VoxelResult::kDropped ? -1 : static_cast<std::int32_t>(to);
+    }
+  cur = std::move(v.cloud);
+}
+
+void normals_stage(Cloud& cur, const NormalConfig& cfg, std::size_t share_k, Preprocessed& out) {
+  if (cfg.radius > 0.0f || cur.empty()) {
+    compute_normals(cur, cfg);
+    return;
+  }
+  const KdTree tree(cur.points);
+  const std::size_t k = std::min<std::size_t>(std::max<std::size_t>(cfg.k, share_k), cur.size());
+  out.neighbours = knn_all(tree, cur.points, k);
+  compute_normals(cur, cfg, out.neighbours);
+}
+
 void require_points(const Cloud& c, const char* stage) {
   if (c.empty()) throw Error(std::string("preprocess: no points left after the ") + stage +
                              " stage");
@@ -34,70 +77,33 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
 
   timer.start("finite");
   Filtered f = remove_invalid(in);
-  remap_filtered(out.output_of_input, f.indices, in.size());
   if (f.cloud.empty()) throw Error("input cloud has no finite point (all x/y/z are NaN or Inf)");
-  out.counts.finite = f.cloud.size();
+  remap_filtered(out.output_of_input, f.indices, in.size());
   Cloud cur = std::move(f.cloud);
-
+  out.counts.finite = cur.size();
   if (cfg.range.enabled) {
     timer.start("range");
-    Filtered r = crop_range(cur, cfg.range);
-    remap_filtered(out.output_of_input, r.indices, cur.size());
-    cur = std::move(r.cloud);
+    apply(crop_range(cur, cfg.range), cur, out.output_of_input);
     require_points(cur, "range");
   }
   out.counts.in_range = cur.size();
-
   if (cfg.voxel.enabled) {
     timer.start("voxel");
-    VoxelResult v = voxel_grid(cur, cfg.voxel);
-    for (auto& m : out.output_of_input)
-      if (m >= 0) {
-        const std::uint32_t to = v.voxel_of[static_cast<std::size_t>(m)];
-        m = to == VoxelResult::kDropped ? -1 : static_cast<std::int32_t>(to);
-      }
-    cur = std::move(v.cloud);
+    voxelise(cur, cfg.voxel, out.output_of_input);
     require_points(cur, "voxel");
   }
   out.counts.voxels = cur.size();
-
   if (cfg.plane.enabled) {
     timer.start("plane");
-    out.plane = fit_plane(cur, cfg.plane, seed);
-    if (!out.plane.found && cfg.plane.required)
-      throw Error("preprocess: no plane found (preprocess.plane.distance = " +
-                  std::to_string(cfg.plane.distance) + " m)");
-    if (out.plane.found) {
-      std::vector<char> keep(cur.size(), 1);
-      for (auto i : out.plane.inliers) keep[i] = 0;
-      for (std::size_t i = 0; i < in.size(); ++i) {
-        const auto m = out.output_of_input[i];
-        if (m >= 0 && !keep[static_cast<std::size_t>(m)]) out.plane_of_input[i] = 1;
-      }
-      Filtered p = keep_if(cur, keep);
-      remap_filtered(out.output_of_input, p.indices, cur.size());
-      cur = std::move(p.cloud);
-      out.counts.plane = out.plane.inliers.size();
-    }
+    remove_plane(cur, cfg, seed, out);
   }
-
   if (cfg.outliers.enabled) {
     timer.start("outliers");
-    Filtered o = remove_outliers(cur, cfg.outliers);
-    remap_filtered(out.output_of_input, o.indices, cur.size());
-    cur = std::move(o.cloud);
+    apply(remove_outliers(cur, cfg.outliers), cur, out.output_of_input);
   }
   out.counts.after_outliers = cur.size();
-
   timer.start("normals");
-  if (cfg.normals.radius > 0.0f || cur.empty()) {
-    compute_normals(cur, cfg.normals);
-  } else {
-    const KdTree tree(cur.points);
-    const std::size_t k = std::min<std::size_t>(std::max<std::size_t>(cfg.normals.k, share_k), cur.size());
-    out.neighbours = knn_all(tree, cur.points, k);
-    compute_normals(cur, cfg.normals, out.neighbours);
-  }
+  normals_stage(cur, cfg.normals, share_k, out);
   timer.stop();
   out.counts.output = cur.size();
   out.cloud = std::move(cur);

@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 
 #include "uwgrasp/core/error.hpp"
@@ -48,6 +49,33 @@ std::uint32_t majority(std::vector<std::uint32_t>& labels) {
     if (run > best_run) best_run = run, best = labels[i];
   }
   return best;
+}
+
+// Appends the centroid of the points `members` (every attribute the cloud has) to `out`.
+void append_centroid(const Cloud& in, std::span<const std::uint32_t> members, Cloud& out) {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
+  double curv = 0.0, rgb[3] = {0, 0, 0};
+  std::vector<std::uint32_t> labels;
+  for (const std::uint32_t i : members) {
+    p += in.points[i].cast<double>();
+    if (in.has_normals() && is_finite(in.normals[i])) n += in.normals[i].cast<double>();
+    if (in.has_curvature() && std::isfinite(in.curvature[i])) curv += in.curvature[i];
+    if (in.has_colors()) rgb[0] += in.colors[i].r, rgb[1] += in.colors[i].g, rgb[2] += in.colors[i].b;
+    if (in.has_labels()) labels.push_back(in.labels[i]);
+  }
+  const double c = double(members.size());
+  out.points.push_back((p / c).cast<float>());
+  if (in.has_normals()) {
+    const double len = n.norm();
+    out.normals.push_back(len > 0 ? Eigen::Vector3f((n / len).cast<float>())
+                                  : Eigen::Vector3f::Constant(std::nanf("")));
+  }
+  if (in.has_curvature()) out.curvature.push_back(static_cast<float>(curv / c));
+  if (in.has_colors()) {
+    auto avg = [&](int ch) { return static_cast<std::uint8_t>(std::lround(rgb[ch] / c)); };
+    out.colors.push_back({avg(0), avg(1), avg(2)});
+  }
+  if (in.has_labels()) out.labels.push_back(majority(labels));
 }
 
 // Voxel key of every point (kNoKey for non-finite points), as PCL computes it.
@@ -98,41 +126,16 @@ VoxelResult voxel_grid(const Cloud& in, const VoxelConfig& cfg) {
   radix_sort(keys, idx, std::max(1, int(std::bit_width(max_key))));
   VoxelResult res;
   res.voxel_of.assign(in.size(), VoxelResult::kDropped);
-  Cloud& out = res.cloud;
-  out.viewpoint = in.viewpoint;
-  std::vector<std::uint32_t> run_labels;
+  res.cloud.viewpoint = in.viewpoint;
   // Each run of equal keys is one voxel, already in PCL's order (ascending voxel index).
   for (std::size_t a = 0, b = 0; a < keys.size(); a = b) {
     while (b < keys.size() && keys[b] == keys[a]) ++b;
     if (b - a < std::max<std::uint32_t>(1, cfg.min_points)) continue;
-    const auto o = static_cast<std::uint32_t>(out.points.size());
-    Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
-    double curv = 0.0, rgb[3] = {0, 0, 0};
-    run_labels.clear();
-    for (std::size_t j = a; j < b; ++j) {
-      const std::uint32_t i = idx[j];
-      res.voxel_of[i] = o;
-      p += in.points[i].cast<double>();
-      if (in.has_normals() && is_finite(in.normals[i])) n += in.normals[i].cast<double>();
-      if (in.has_curvature() && std::isfinite(in.curvature[i])) curv += in.curvature[i];
-      if (in.has_colors()) rgb[0] += in.colors[i].r, rgb[1] += in.colors[i].g, rgb[2] += in.colors[i].b;
-      if (in.has_labels()) run_labels.push_back(in.labels[i]);
-    }
-    const double c = double(b - a);
-    out.points.push_back((p / c).cast<float>());
-    if (in.has_normals()) {
-      const double len = n.norm();
-      out.normals.push_back(len > 0 ? Eigen::Vector3f((n / len).cast<float>())
-                                    : Eigen::Vector3f::Constant(std::nanf("")));
-    }
-    if (in.has_curvature()) out.curvature.push_back(static_cast<float>(curv / c));
-    if (in.has_colors()) {
-      auto avg = [&](int ch) { return static_cast<std::uint8_t>(std::lround(rgb[ch] / c)); };
-      out.colors.push_back({avg(0), avg(1), avg(2)});
-    }
-    if (in.has_labels()) out.labels.push_back(majority(run_labels));
+    const auto o = static_cast<std::uint32_t>(res.cloud.points.size());
+    for (std::size_t j = a; j < b; ++j) res.voxel_of[idx[j]] = o;
+    append_centroid(in, std::span<const std::uint32_t>(&idx[a], b - a), res.cloud);
   }
-  make_unorganised(out);
+  make_unorganised(res.cloud);
   return res;
 }
 
