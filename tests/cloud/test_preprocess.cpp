@@ -48,6 +48,19 @@ TEST(Preprocess, RemovesTheFloorAndKeepsTheBox) {
     EXPECT_GT(t.ms(s) + 1e-9, 0.0) << s;
 }
 
+TEST(Preprocess, FewerPointsLeftThanTheNormalNeighbourhood) {
+  // Five points above a floor: fewer than normals.k survive the plane stage.
+  Cloud c = test::plane_grid(60, 1.0f, 2.0f);
+  for (int i = 0; i < 5; ++i) c.points.emplace_back(0.01f * float(i), 0.02f * float(i % 2), 1.8f + 0.01f * float(i));
+  make_unorganised(c);
+  PreprocessConfig cfg;
+  cfg.outliers.enabled = false;
+  StageTimer t;
+  const Preprocessed p = preprocess(c, cfg, 1, t, 30);
+  ASSERT_EQ(p.cloud.size(), 5u);
+  for (const auto& n : p.cloud.normals) EXPECT_NEAR(n.norm(), 1.0f, 1e-5f);
+}
+
 TEST(Preprocess, BadInputsNameTheProblem) {
   StageTimer t;
   EXPECT_THROW(preprocess(Cloud{}, {}, 1, t), Error);

@@ -38,7 +38,8 @@ PointNormal normal_from(std::span<const Eigen::Vector3f> points,
 }
 
 void compute_normals(Cloud& cloud, const NormalConfig& cfg, const Neighbours& nb) {
-  if (cfg.radius > 0.0f || nb.k < cfg.k || nb.count.size() != cloud.size())
+  // Lists shorter than k are fine when they already hold the whole cloud.
+  if (cfg.radius > 0.0f || (nb.k < cfg.k && nb.k < cloud.size()) || nb.count.size() != cloud.size())
     throw Error("normals: the shared neighbour lists do not fit this cloud");
   cloud.normals.resize(cloud.size());
   cloud.curvature.resize(cloud.size());

@@ -30,7 +30,7 @@ PointNormal normal_from(std::span<const Eigen::Vector3f> points,
 // Fills cloud.normals and cloud.curvature for every point (in parallel). Points must be finite.
 void compute_normals(Cloud& cloud, const NormalConfig& cfg);
 
-// The same from neighbour lists already computed for this cloud (nb.k >= cfg.k, kNN mode): the
+// The same from neighbour lists already computed for this cloud (nb.k >= min(cfg.k, size), kNN mode): the
 // first cfg.k of each list are the k nearest, so the normals are identical.
 void compute_normals(Cloud& cloud, const NormalConfig& cfg, const Neighbours& nb);
 
