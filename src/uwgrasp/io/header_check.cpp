@@ -29,6 +29,7 @@ Words split(const std::string& line) {
 std::size_t number(const std::string& path, const std::string& key, const std::string& v) {
   if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos)
     bad(path, key + " '" + v + "' is not a non-negative integer");
+  if (v.size() > 10) bad(path, key + " '" + v + "' is too large");  // at most 2^32 - 1 points
   return static_cast<std::size_t>(std::stoull(v));
 }
 
@@ -88,7 +89,8 @@ void check_pcd(const std::string& path) {
   check_fields(path, h, point_size);
   const std::size_t width = single(path, h, "WIDTH"), height = single(path, h, "HEIGHT");
   const std::size_t points = single(path, h, "POINTS");
-  if (width * height != points) bad(path, "WIDTH * HEIGHT != POINTS");
+  if ((height != 0 && width > points / height + 1) || width * height != points)
+    bad(path, "WIDTH * HEIGHT != POINTS");
   const Words& data = h.entries.at("DATA");
   if (data.size() != 1) bad(path, "DATA needs one value");
   const auto file_size = static_cast<std::size_t>(std::filesystem::file_size(path));
