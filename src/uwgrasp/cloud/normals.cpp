@@ -16,18 +16,8 @@ PointNormal normal_from(std::span<const Eigen::Vector3f> points,
                         const Eigen::Vector3f& viewpoint) {
   PointNormal out;
   if (neighbours.size() < 3) return out;
-  // Two passes about the centroid in double precision: stable for small, distant patches.
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (auto i : neighbours) mean += points[i].cast<double>();
-  mean /= static_cast<double>(neighbours.size());
-  Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
-  for (auto i : neighbours) {
-    const Eigen::Vector3d d = points[i].cast<double>() - mean;
-    c.noalias() += d * d.transpose();
-  }
-  c /= static_cast<double>(neighbours.size());
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(c);
+  es.computeDirect(mean_covariance(points, neighbours).cov);  // eq. 4.4-4.5
   const Eigen::Vector3d l = es.eigenvalues().cwiseMax(0.0);  // ascending
   Eigen::Vector3f n = es.eigenvectors().col(0).cast<float>().normalized();
   if (n.dot(viewpoint - at) < 0.0f) n = -n;

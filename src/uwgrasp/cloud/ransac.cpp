@@ -73,17 +73,10 @@ double ransac_iterations(double p, double w, int n) {
 }
 
 Eigen::Vector4f least_squares_plane(const Cloud& in, const std::vector<std::uint32_t>& idx) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (auto i : idx) mean += in.points[i].cast<double>();
-  mean /= static_cast<double>(idx.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (auto i : idx) {
-    const Eigen::Vector3d d = in.points[i].cast<double>() - mean;
-    cov.noalias() += d * d.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+  const MeanCovariance mc = mean_covariance(in.points, idx);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(mc.cov);
   const Eigen::Vector3d n = es.eigenvectors().col(0);
-  return Eigen::Vector4d(n.x(), n.y(), n.z(), -n.dot(mean)).cast<float>();
+  return Eigen::Vector4d(n.x(), n.y(), n.z(), -n.dot(mc.mean)).cast<float>();
 }
 
 PlaneResult fit_plane(const Cloud& in, const PlaneConfig& cfg, std::uint64_t seed) {

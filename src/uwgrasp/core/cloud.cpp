@@ -69,6 +69,20 @@ Eigen::Matrix3d covariance(const Cloud& cloud, const Eigen::Vector3d& mean) {
   return cloud.empty() ? c : Eigen::Matrix3d(c / static_cast<double>(cloud.size()));
 }
 
+MeanCovariance mean_covariance(std::span<const Eigen::Vector3f> points,
+                               std::span<const std::uint32_t> indices) {
+  MeanCovariance mc;
+  if (indices.empty()) return mc;
+  for (auto i : indices) mc.mean += points[i].cast<double>();
+  mc.mean /= static_cast<double>(indices.size());
+  for (auto i : indices) {
+    const Eigen::Vector3d d = points[i].cast<double>() - mc.mean;
+    mc.cov.noalias() += d * d.transpose();
+  }
+  mc.cov /= static_cast<double>(indices.size());
+  return mc;
+}
+
 bool is_finite(const Eigen::Vector3f& p) {
   return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
 }

@@ -47,6 +47,15 @@ void make_unorganised(Cloud& cloud);
 Eigen::Vector3d centroid(const Cloud& cloud);
 Eigen::Matrix3d covariance(const Cloud& cloud, const Eigen::Vector3d& mean);
 
+// The same for the subset `indices` of `points`, in double precision, two passes about the
+// centroid (stable for small, distant patches). Both are zero for an empty subset.
+struct MeanCovariance {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+};
+MeanCovariance mean_covariance(std::span<const Eigen::Vector3f> points,
+                               std::span<const std::uint32_t> indices);
+
 bool is_finite(const Eigen::Vector3f& p);
 
 }  // namespace uwgrasp

@@ -128,7 +128,6 @@ Cloud from_blob(const pcl::PCLPointCloud2& b, const std::string& src) {
     }
   }
   if (c.height == 0) c.height = 1;
-  if (c.width == 0 && n == 0) c.height = 1;
   return c;
 }
 
