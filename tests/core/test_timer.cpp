@@ -22,4 +22,18 @@ TEST(StageTimer, RecordsStagesInOrderAndSums) {
   EXPECT_DOUBLE_EQ(t.total_ms(), t.ms("a") + t.ms("b"));
 }
 
+TEST(StageTimer, RepeatedStageAddsToItsFirstEntry) {
+  StageTimer t;
+  t.start("sample");
+  t.start("check");
+  std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  t.start("sample");
+  t.start("check");
+  std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  t.stop();
+  ASSERT_EQ(t.stages().size(), 2u);
+  EXPECT_EQ(t.stages()[1].name, "check");
+  EXPECT_GE(t.stages()[1].ms, 3.5);
+}
+
 }  // namespace uwgrasp

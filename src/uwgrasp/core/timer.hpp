@@ -13,7 +13,8 @@ struct StageTime {
 
 class StageTimer {
  public:
-  // Starts timing `name`; the previous stage (if any) ends now.
+  // Starts timing `name`; the previous stage (if any) ends now. Starting a stage that already
+  // ran adds to its time.
   void start(std::string name);
   // Ends the running stage.
   void stop();
@@ -26,6 +27,7 @@ class StageTimer {
   using Clock = std::chrono::steady_clock;
   std::vector<StageTime> stages_;
   Clock::time_point begin_{};
+  std::size_t current_ = 0;
   bool running_ = false;
 };
 
