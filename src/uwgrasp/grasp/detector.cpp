@@ -1,0 +1,171 @@
+#include "uwgrasp/grasp/detector.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::grasp {
+
+namespace {
+struct LevelCloud {
+  std::vector<Eigen::Vector3f> points, normals;
+};
+
+LevelCloud to_level(const Cloud& object, const Frames& f) {
+  const Eigen::Matrix3f R = f.level_from_camera.linear().cast<float>();
+  const Eigen::Vector3f t = f.level_from_camera.translation().cast<float>();
+  LevelCloud l;
+  l.points.reserve(object.size());
+  l.normals.reserve(object.size());
+  for (std::size_t i = 0; i < object.size(); ++i) {
+    l.points.push_back(R * object.points[i] + t);
+    l.normals.push_back(R * object.normals[i]);
+  }
+  return l;
+}
+
+std::vector<Candidate> sample(SamplerKind kind, const LevelCloud& l, const GraspConfig& cfg,
+                              const Frames& f, std::uint64_t seed, std::uint32_t count,
+                              std::uint32_t first) {
+  const Eigen::Matrix3d R_BG = f.body_from_gripper.linear();
+  switch (kind) {
+    case SamplerKind::uniform: return sample_uniform(l.points, cfg.sampler, R_BG, seed, count, first);
+    case SamplerKind::surface: return sample_surface(l.points, l.normals, cfg.sampler, seed, count, first);
+    default: return sample_normal(l.points, cfg.sampler, R_BG, seed, count, first);
+  }
+}
+
+// Median distance to the nearest neighbour: the cloud's own "voxel size" when none was set.
+double median_spacing(const std::vector<Eigen::Vector3f>& pts) {
+  const cloud::KdTree tree(pts);
+  const cloud::Neighbours nb = cloud::knn_all(tree, pts, 2);
+  std::vector<float> d;
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (nb.count[i] > 1) d.push_back(std::sqrt(nb.dists_of(i)[1]));
+  if (d.empty()) return 0.0;
+  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+  return d[d.size() / 2];
+}
+
+double max_inliers(const ScoreConfig& s, const Gripper& g, const LevelCloud& l, double leaf) {
+  if (s.inlier_mode == InlierMode::fixed) return s.max_inliers;
+  if (!(leaf > 0.0)) leaf = median_spacing(l.points);
+  if (!(leaf > 0.0)) throw Error("derived maximum inliers: the object's points all coincide");
+  const Eigen::Vector3f size = g.closing.hi - g.closing.lo;
+  return s.inlier_mode == InlierMode::volume ? max_inliers_volume(size, leaf)
+                                             : max_inliers_surface(size, leaf);
+}
+
+struct Pool {
+  std::vector<Candidate> candidates;
+  std::vector<Check> checks;
+  void add(std::vector<Candidate> c, std::vector<Check> k) {
+    candidates.insert(candidates.end(), c.begin(), c.end());
+    std::move(k.begin(), k.end(), std::back_inserter(checks));
+  }
+};
+
+// Feasible candidates with a solid part in the object's shadow become `occluded`.
+void reject_occluded(const Cloud& object, const Gripper& g, const Frames& f,
+                     const OcclusionConfig& cfg, Pool& pool) {
+  const DepthMap map = make_depth_map(object.points, cfg.resolution);
+  const std::vector<Eigen::Vector3f> samples = part_samples(g, cfg.spacing);
+  const Pose camera_from_level = f.level_from_camera.inverse();
+  tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
+    if (pool.checks[i].feasible() &&
+        occluded(map, samples, pool.candidates[i], camera_from_level, cfg))
+      pool.checks[i].reason = Reject::occluded;
+  });
+}
+
+// automatic: a pilot share on each sampler, then the rest of the budget on the one that found
+// the most feasible candidates (ties: normal, uniform, surface - the thesis's order of use).
+SamplerKind run_auto(const LevelCloud& l, const GraspConfig& cfg, const Frames& f,
+                     const Gripper& g, const PointBvh& bvh, std::uint64_t seed, StageTimer& timer,
+                     Pool& pool) {
+  const auto n = cfg.sampler.samples;
+  const auto pilot = static_cast<std::uint32_t>(std::lround(cfg.sampler.pilot * n));
+  SamplerKind best = SamplerKind::normal;
+  std::size_t best_feasible = 0;
+  for (SamplerKind k : {SamplerKind::normal, SamplerKind::uniform, SamplerKind::surface}) {
+    timer.start("sample");
+    auto c = sample(k, l, cfg, f, seed, pilot, 0);
+    timer.start("check");
+    auto checks = check_candidates(bvh, g, c);
+    const std::size_t feasible = count_rejections(checks)[0];
+    if (feasible > best_feasible) best = k, best_feasible = feasible;
+    pool.add(std::move(c), std::move(checks));
+  }
+  timer.start("sample");
+  auto c = sample(best, l, cfg, f, seed, n - std::min(n, 3 * pilot), pilot);
+  timer.start("check");
+  auto checks = check_candidates(bvh, g, c);
+  pool.add(std::move(c), std::move(checks));
+  return best;
+}
+}  // namespace
+
+ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double leaf,
+                         std::uint64_t seed, StageTimer& timer) {
+  if (object.size() < 3)
+    throw Error("object has " + std::to_string(object.size()) +
+                " points; grasp detection needs at least 3");
+  if (!object.has_normals()) throw Error("object cloud has no normals; grasp scoring needs them");
+  check_consistent(object, "object cloud");
+  const Gripper g = make_gripper(cfg.gripper);
+  check_sampler(cfg.sampler);
+  check_weights(cfg.score.weights);
+  (void)orientation_score(Eigen::Vector3d::Zero(), cfg.score.orientation);  // validates weights
+
+  ObjectGrasps out;
+  out.frames = make_frames(cfg.frames);
+  const LevelCloud l = to_level(object, out.frames);
+  out.max_inliers = max_inliers(cfg.score, g, l, leaf);
+  timer.start("check");  // the hierarchy is part of the check's cost
+  const PointBvh bvh = build_bvh(l.points);
+  Pool pool;
+  out.sampler = cfg.sampler.kind;
+  if (cfg.sampler.kind == SamplerKind::automatic) {
+    out.sampler = run_auto(l, cfg, out.frames, g, bvh, seed, timer, pool);
+  } else {
+    timer.start("sample");
+    auto c = sample(cfg.sampler.kind, l, cfg, out.frames, seed, cfg.sampler.samples, 0);
+    timer.start("check");
+    auto checks = check_candidates(bvh, g, c);
+    pool.add(std::move(c), std::move(checks));
+  }
+  if (cfg.occlusion.enabled) reject_occluded(object, g, out.frames, cfg.occlusion, pool);
+  timer.start("score");
+  out.grasps = score_and_rank(l.points, l.normals, pool.candidates, pool.checks, out.frames,
+                              cfg.score, out.max_inliers);
+  timer.stop();
+  out.candidates = pool.candidates.size();
+  out.rejections = count_rejections(pool.checks);
+  return out;
+}
+
+Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
+                 const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed) {
+  Detection d;
+  d.scene = segment::segment_scene(input, pre, seg, seed);
+  d.timer = d.scene.timer;
+  d.timer.start("select");
+  if (d.scene.info.empty()) throw Error("segmentation found no segment to grasp");
+  d.segment = segment::select_object(d.scene.info, seg.object);
+  d.object = select(d.scene.pre.cloud, d.scene.segmentation.segments[d.segment]);
+  d.timer.stop();
+  const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;
+  d.result = find_grasps(d.object, cfg, leaf, seed, d.timer);
+  return d;
+}
+
+Pose camera_from_gripper(const Grasp& g, const Frames& f) {
+  return f.level_from_camera.inverse() * g.level_from_gripper;
+}
+
+}  // namespace uwgrasp::grasp

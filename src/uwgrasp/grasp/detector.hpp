@@ -1,0 +1,59 @@
+#pragma once
+// The detector pipeline: preprocess -> segment -> select object -> sample -> check -> score ->
+// rank -> top K, with per-stage times and counts.
+#include <cstdint>
+#include <vector>
+
+#include "uwgrasp/core/cloud.hpp"
+#include "uwgrasp/core/timer.hpp"
+#include "uwgrasp/grasp/feasibility.hpp"
+#include "uwgrasp/grasp/frames.hpp"
+#include "uwgrasp/grasp/gripper.hpp"
+#include "uwgrasp/grasp/occlusion.hpp"
+#include "uwgrasp/grasp/samplers.hpp"
+#include "uwgrasp/grasp/score.hpp"
+#include "uwgrasp/segment/pipeline.hpp"
+
+namespace uwgrasp::grasp {
+
+struct GraspConfig {
+  GripperConfig gripper;
+  FrameConfig frames;
+  SamplerConfig sampler;
+  OcclusionConfig occlusion;
+  ScoreConfig score;
+};
+
+// What the grasp engine found on one object.
+struct ObjectGrasps {
+  Frames frames;
+  SamplerKind sampler = SamplerKind::normal;  // the sampler that made the candidates (auto: chosen)
+  std::size_t candidates = 0;
+  RejectCounts rejections{};                   // rejections[none] = feasible candidates
+  double max_inliers = 0;                      // q_i's denominator in effect
+  std::vector<Grasp> grasps;                   // ranked, at most score.top
+  std::size_t feasible() const { return rejections[0]; }
+};
+
+// The grasp engine on a segmented object (camera frame, with normals). `leaf` is the voxel size
+// for derived inlier maxima (0: the object's median point spacing). Records "sample", "check"
+// and "score" in `timer`. Throws Error for fewer than 3 points, missing normals, or an invalid
+// gripper, sampler or weights.
+ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double leaf,
+                         std::uint64_t seed, StageTimer& timer);
+
+struct Detection {
+  segment::Scene scene;
+  std::size_t segment = 0;  // the selected object's segment
+  Cloud object;             // its points, camera frame
+  ObjectGrasps result;
+  StageTimer timer;         // every stage, preprocessing to ranking
+};
+
+Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
+                 const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed);
+
+// T_CG of a grasp: the camera frame pose reported to users.
+Pose camera_from_gripper(const Grasp& g, const Frames& f);
+
+}  // namespace uwgrasp::grasp

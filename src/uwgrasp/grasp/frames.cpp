@@ -1,0 +1,40 @@
+#include "uwgrasp/grasp/frames.hpp"
+
+#include <string>
+
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::grasp {
+
+namespace {
+void require_finite(const Mount& m, const char* name) {
+  if (!m.position.allFinite() || !m.rpy.allFinite())
+    throw Error(std::string("frames.") + name + ": position and rpy must be finite");
+}
+
+Pose mount_pose(const Mount& m) { return make_pose(m.position, quat_from_rpy(m.rpy)); }
+}  // namespace
+
+Pose body_from_camera(const Mount& m) {
+  Pose T = mount_pose(m);
+  T.linear() = T.linear() * body_from_optical();
+  return T;
+}
+
+Frames make_frames(const FrameConfig& cfg) {
+  require_finite(cfg.camera, "camera");
+  require_finite(cfg.gripper, "gripper");
+  if (!std::isfinite(cfg.capture_roll) || !std::isfinite(cfg.capture_pitch))
+    throw Error("frames.capture_roll / capture_pitch must be finite");
+  Frames f;
+  f.level_from_camera =
+      level_from_body(cfg.capture_roll, cfg.capture_pitch) * body_from_camera(cfg.camera);
+  f.body_from_gripper = mount_pose(cfg.gripper);
+  return f;
+}
+
+Pose vehicle_pose(const Pose& level_from_gripper, const Frames& f) {
+  return level_from_gripper * f.body_from_gripper.inverse();
+}
+
+}  // namespace uwgrasp::grasp

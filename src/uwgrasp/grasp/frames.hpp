@@ -1,0 +1,42 @@
+#pragma once
+// Frames (ARCHITECTURE.md): camera optical C, vehicle body B (x forward, y starboard, z down),
+// level L (origin and heading of B at capture, roll = pitch = 0) and gripper G. Candidates are
+// sampled and scored in L; results are reported in C and L.
+#include <Eigen/Core>
+
+#include "uwgrasp/core/pose.hpp"
+
+namespace uwgrasp::grasp {
+
+// A rigid mount on the vehicle: position in B (m) and roll/pitch/yaw (rad, ZYX, eq. 2.2-2.4).
+struct Mount {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+};
+
+struct FrameConfig {
+  // The camera's forward-looking frame (x along the optical axis, like B) in B; all zero is a
+  // camera looking straight ahead. Defaults: the BlueROV2's camera behind the front dome.
+  Mount camera{Eigen::Vector3d(0.20, 0.0, 0.0), Eigen::Vector3d::Zero()};
+  // T_BG: the gripper frame in B. Default: below the bow, approach along body x, fingers closing
+  // along body y, so the vehicle's roll/pitch/yaw equal the gripper's (the thesis's assumption).
+  Mount gripper{Eigen::Vector3d(0.35, 0.0, 0.12), Eigen::Vector3d::Zero()};
+  double capture_roll = 0.0;   // vehicle attitude when the cloud was captured (IMU), rad
+  double capture_pitch = 0.0;
+};
+
+struct Frames {
+  Pose level_from_camera;   // T_LC = T_LB(capture) * T_BC
+  Pose body_from_gripper;   // T_BG
+};
+
+// Throws Error naming the field for a non-finite value.
+Frames make_frames(const FrameConfig& cfg);
+
+// T_BC for a mount: the mount's rotation followed by the optical axes (z forward, x right, y down).
+Pose body_from_camera(const Mount& m);
+
+// The vehicle pose T_LB that puts the gripper at T_LG: T_LB = T_LG * T_BG^-1.
+Pose vehicle_pose(const Pose& level_from_gripper, const Frames& f);
+
+}  // namespace uwgrasp::grasp

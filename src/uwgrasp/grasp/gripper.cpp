@@ -1,0 +1,64 @@
+#include "uwgrasp/grasp/gripper.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::grasp {
+
+namespace {
+void require_positive(float v, const char* name) {
+  if (!(v > 0.0f) || !std::isfinite(v))
+    throw Error(std::string("gripper.") + name + " must be positive, got " + std::to_string(v));
+}
+
+Box box(float x0, float x1, float y0, float y1, float z0, float z1) {
+  return Box{Eigen::Vector3f(x0, y0, z0), Eigen::Vector3f(x1, y1, z1)};
+}
+}  // namespace
+
+Gripper make_gripper(const GripperConfig& c) {
+  require_positive(c.max_aperture, "max_aperture");
+  require_positive(c.finger_length, "finger_length");
+  require_positive(c.finger_width, "finger_width");
+  require_positive(c.finger_height, "finger_height");
+  require_positive(c.palm_depth, "palm_depth");
+  require_positive(c.palm_height, "palm_height");
+  require_positive(c.body_length, "body_length");
+  require_positive(c.body_width, "body_width");
+  require_positive(c.body_height, "body_height");
+  if (!(c.min_aperture >= 0.0f))
+    throw Error("gripper.min_aperture must be >= 0, got " + std::to_string(c.min_aperture));
+  if (c.min_aperture >= c.max_aperture)
+    throw Error("gripper.min_aperture (" + std::to_string(c.min_aperture) +
+                ") must be below gripper.max_aperture (" + std::to_string(c.max_aperture) + ")");
+  if (!(c.clearance >= 0.0f) || c.max_aperture - 2.0f * c.clearance <= c.min_aperture)
+    throw Error("gripper.clearance " + std::to_string(c.clearance) +
+                " leaves no graspable width between min_aperture and max_aperture");
+
+  Gripper g;
+  g.config = c;
+  const float L = c.finger_length, A = c.max_aperture, w = c.finger_width, H = c.finger_height;
+  const float outer = A / 2 + w;  // outer face of a fully open finger
+  g.closing = box(-L / 2, L / 2, -A / 2, A / 2, -H / 2, H / 2);
+  const auto at = [&](Part p) -> Box& { return g.solids[static_cast<int>(p)]; };
+  at(Part::left_finger) = box(-L / 2, L / 2, -outer, -A / 2, -H / 2, H / 2);
+  at(Part::right_finger) = box(-L / 2, L / 2, A / 2, outer, -H / 2, H / 2);
+  const float palm_back = -L / 2 - c.palm_depth;
+  at(Part::palm) = box(palm_back, -L / 2, -outer, outer, -c.palm_height / 2, c.palm_height / 2);
+  at(Part::body) = box(palm_back - c.body_length, palm_back, -c.body_width / 2, c.body_width / 2,
+                       -c.body_height / 2, c.body_height / 2);
+  g.bounds = g.closing;
+  for (const Box& s : g.solids) {
+    g.bounds.lo = g.bounds.lo.cwiseMin(s.lo);
+    g.bounds.hi = g.bounds.hi.cwiseMax(s.hi);
+  }
+  return g;
+}
+
+float max_grasp_width(const Gripper& g) {
+  return g.config.max_aperture - 2.0f * g.config.clearance;
+}
+
+}  // namespace uwgrasp::grasp

@@ -1,0 +1,44 @@
+#pragma once
+// One view sees only the near side of an object (7.4.3): a gripper part placed just behind the
+// visible surface may be inside the object's unseen body, where no point can reveal it. This
+// check rejects a candidate whose solid parts lie in the camera's shadow of the object, less
+// than `thickness` behind the visible surface - the thesis's assumption made explicit.
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "uwgrasp/core/pose.hpp"
+#include "uwgrasp/grasp/gripper.hpp"
+#include "uwgrasp/grasp/samplers.hpp"
+
+namespace uwgrasp::grasp {
+
+struct OcclusionConfig {
+  bool enabled = true;
+  float thickness = 0.03f;  // assumed depth of the object behind what the camera saw, m
+  float tolerance = 0.003f; // parts may touch the surface from behind by this much, m
+  float resolution = 0.003f;  // bin size of the depth map in normalised image units (~rad)
+  float spacing = 0.005f;   // test points on the gripper parts, m
+};
+
+// Nearest object depth per bin of normalised image coordinates (x/z, y/z) in the camera frame,
+// dilated by one bin so that gaps between points do not read as free space.
+struct DepthMap {
+  float resolution = 0;
+  int u0 = 0, v0 = 0, width = 0, height = 0;
+  std::vector<float> depth;  // +inf where the object was not seen
+  float at(float x, float y) const;  // +inf outside the map
+};
+
+DepthMap make_depth_map(std::span<const Eigen::Vector3f> camera_points, float resolution);
+
+// Points on the surfaces of the gripper's solid parts, in the gripper frame.
+std::vector<Eigen::Vector3f> part_samples(const Gripper& g, float spacing);
+
+// True when a part sample of the candidate (pose in L; camera_from_level maps L to C) lies in
+// the object's shadow between tolerance and thickness behind the visible surface.
+bool occluded(const DepthMap& map, std::span<const Eigen::Vector3f> samples, const Candidate& c,
+              const Pose& camera_from_level, const OcclusionConfig& cfg);
+
+}  // namespace uwgrasp::grasp

@@ -1,0 +1,64 @@
+#pragma once
+// Candidate grasp poses (thesis chapter 5). Every sampler is seeded per candidate, so the same
+// seed gives the same candidates whatever the thread count. Positions and orientations are in
+// the level frame L; orientations are drawn as the vehicle's roll/pitch/yaw around the neutral
+// (level, heading-aligned) attitude (6.3), and the gripper follows through its mount.
+#include <Eigen/Core>
+#include <cstdint>
+#include <numbers>
+#include <span>
+#include <vector>
+
+namespace uwgrasp::grasp {
+
+struct Candidate {
+  Eigen::Vector3f position = Eigen::Vector3f::Zero();     // closing-region centre in L
+  Eigen::Matrix3f rotation = Eigen::Matrix3f::Identity();  // R_LG: approach, closing, x cross y
+  std::int32_t source = -1;  // the object point the candidate was drawn around, -1 if none
+};
+
+enum class SamplerKind { uniform, normal, surface, automatic };
+
+struct SamplerConfig {
+  SamplerKind kind = SamplerKind::normal;
+  std::uint32_t samples = 3000;  // candidates per detection
+  // sigma_theta: standard deviation of roll, pitch, yaw (Algorithms 1 and 2); pi/4 as in 8.5.
+  Eigen::Vector3d sigma_theta = Eigen::Vector3d::Constant(std::numbers::pi / 4);
+  // Algorithm 1: n local variations per uniformly drawn point, position deviation sigma_p (m).
+  std::uint32_t variations = 10;
+  Eigen::Vector3d sigma_p = Eigen::Vector3d::Constant(0.01);
+  // Algorithm 2: sigma_p = alpha_p o sqrt(diag C); 1 is "no scaling" as used for the barbell.
+  Eigen::Vector3d alpha_p = Eigen::Vector3d::Ones();
+  // surface sampler: approach against the surface normal, closing direction uniform about it,
+  // position deviation sigma_p. automatic: `pilot` share of the budget on each sampler, the rest
+  // on the one with the most feasible candidates.
+  double pilot = 0.1;
+};
+
+// Algorithm 1: k = ceil(count / n) points drawn uniformly (with replacement) from `points`, n
+// variations each: p + v, v ~ N(0, sigma_p), rpy ~ N(0, sigma_theta). `first` offsets the
+// candidate numbering (and so the random streams) for a continued run.
+std::vector<Candidate> sample_uniform(std::span<const Eigen::Vector3f> points,
+                                      const SamplerConfig& cfg, const Eigen::Matrix3d& body_from_gripper,
+                                      std::uint64_t seed, std::uint32_t count, std::uint32_t first = 0);
+
+// Algorithm 2: p ~ N(centroid, alpha_p o sqrt(diag C)) (eq. 4.4, 4.5 over the whole object),
+// rpy ~ N(0, sigma_theta).
+std::vector<Candidate> sample_normal(std::span<const Eigen::Vector3f> points,
+                                     const SamplerConfig& cfg, const Eigen::Matrix3d& body_from_gripper,
+                                     std::uint64_t seed, std::uint32_t count, std::uint32_t first = 0);
+
+// Surface-guided (9.3's "orientations pointing towards the object"): a uniformly drawn point,
+// approach along its inward normal, closing direction uniform in [0, pi) about the approach.
+std::vector<Candidate> sample_surface(std::span<const Eigen::Vector3f> points,
+                                      std::span<const Eigen::Vector3f> normals,
+                                      const SamplerConfig& cfg, std::uint64_t seed,
+                                      std::uint32_t count, std::uint32_t first = 0);
+
+// Throws Error naming the field for a negative deviation, zero variations or a pilot share
+// outside (0, 1/3].
+void check_sampler(const SamplerConfig& cfg);
+
+const char* sampler_name(SamplerKind k);
+
+}  // namespace uwgrasp::grasp

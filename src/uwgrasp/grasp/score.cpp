@@ -1,0 +1,70 @@
+#include "uwgrasp/grasp/score.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+namespace uwgrasp::grasp {
+
+Grasp score_candidate(std::span<const Eigen::Vector3f> points,
+                      std::span<const Eigen::Vector3f> normals, const Candidate& c,
+                      const Check& check, const Frames& frames, const ScoreConfig& cfg,
+                      double max_inliers) {
+  Grasp g;
+  g.level_from_gripper = Pose::Identity();
+  g.level_from_gripper.linear() = c.rotation.cast<double>();
+  g.level_from_gripper.translation() = c.position.cast<double>();
+  g.level_from_vehicle = vehicle_pose(g.level_from_gripper, frames);
+  g.vehicle_rpy = rpy_from_matrix(g.level_from_vehicle.linear());
+  g.inliers = check.inliers;
+  g.width = check.width;
+  // q_n: the closing-region point nearest the gripper position (6.2).
+  const Eigen::Vector3d approach = c.rotation.col(0).cast<double>();
+  g.scores.normal = normal_score(approach, normals[check.nearest].cast<double>());
+  g.scores.orientation = orientation_score(g.vehicle_rpy, cfg.orientation);
+
+  g.contact_index[0] = check.left, g.contact_index[1] = check.right;
+  g.contacts[0] = points[check.left].cast<double>();
+  g.contacts[1] = points[check.right].cast<double>();
+  const ContactScores cs =
+      contact_scores(g.contacts[0], g.contacts[1], normals[check.left].cast<double>(),
+                     normals[check.right].cast<double>(), c.rotation.col(1).cast<double>());
+  g.scores.contact_left = cs.left;
+  g.scores.contact_right = cs.right;
+  g.friction = antipodal(cs, cfg.mu);
+  g.scores.inliers = inlier_score(g.inliers, max_inliers);
+  g.scores.total = total_score(g.scores, cfg.weights);
+  return g;
+}
+
+std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
+                                  std::span<const Eigen::Vector3f> normals,
+                                  std::span<const Candidate> candidates, std::vector<Check>& checks,
+                                  const Frames& frames, const ScoreConfig& cfg, double max_inliers) {
+  std::vector<std::uint32_t> feasible;
+  for (std::size_t i = 0; i < checks.size(); ++i)
+    if (checks[i].feasible()) feasible.push_back(static_cast<std::uint32_t>(i));
+  std::vector<Grasp> all(feasible.size());
+  tbb::parallel_for(std::size_t(0), feasible.size(), [&](std::size_t k) {
+    const std::uint32_t i = feasible[k];
+    all[k] = score_candidate(points, normals, candidates[i], checks[i], frames, cfg, max_inliers);
+    all[k].candidate = i;
+  });
+  if (cfg.require_antipodal) {
+    std::erase_if(all, [&](const Grasp& g) {
+      if (g.friction.ok) return false;
+      checks[g.candidate].reason = Reject::not_antipodal;
+      return true;
+    });
+  }
+  const auto better = [](const Grasp& a, const Grasp& b) {
+    if (a.scores.total != b.scores.total) return a.scores.total > b.scores.total;
+    return a.candidate < b.candidate;
+  };
+  const std::size_t keep = std::min<std::size_t>(cfg.top, all.size());
+  std::partial_sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(keep), all.end(), better);
+  all.resize(keep);
+  return all;
+}
+
+}  // namespace uwgrasp::grasp

@@ -1,0 +1,56 @@
+#pragma once
+// Scoring and ranking of the feasible candidates (thesis 6.2-6.6).
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "uwgrasp/core/pose.hpp"
+#include "uwgrasp/grasp/feasibility.hpp"
+#include "uwgrasp/grasp/frames.hpp"
+#include "uwgrasp/grasp/metrics.hpp"
+
+namespace uwgrasp::grasp {
+
+// How q_i's maximum is set (6.5): by hand as in Table 8.5, or derived from the gripper and the
+// voxel size (see max_inliers_volume / max_inliers_surface).
+enum class InlierMode { fixed, volume, surface };
+
+struct ScoreConfig {
+  Weights weights;
+  OrientationConfig orientation;
+  InlierMode inlier_mode = InlierMode::fixed;
+  double max_inliers = 135;     // Table 8.5 (barbell, circle); 250 for the cross
+  double mu = 0.5;              // friction coefficient for the antipodal test
+  bool require_antipodal = false;  // reject grasps that are not antipodal for mu
+  std::uint32_t top = 10;       // grasps kept after ranking
+};
+
+struct Grasp {
+  std::uint32_t candidate = 0;     // index into the candidate list
+  Pose level_from_gripper;         // T_LG
+  Pose level_from_vehicle;         // T_LB = T_LG * T_BG^-1, the pose the vehicle must hold
+  Eigen::Vector3d vehicle_rpy = Eigen::Vector3d::Zero();
+  Scores scores;
+  std::size_t inliers = 0;
+  double width = 0.0;              // at closure, along the closing direction
+  std::uint32_t contact_index[2] = {0, 0};  // object points: left, right
+  Eigen::Vector3d contacts[2];     // in L
+  Antipodal friction;
+};
+
+// Scores every feasible candidate (points and normals in L, indices as in the checks). A
+// candidate that fails the antipodal requirement has its check's reason set to not_antipodal.
+// Returns the grasps ranked by total score, ties by candidate index, at most cfg.top.
+std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
+                                  std::span<const Eigen::Vector3f> normals,
+                                  std::span<const Candidate> candidates, std::vector<Check>& checks,
+                                  const Frames& frames, const ScoreConfig& cfg, double max_inliers);
+
+// Scores one feasible candidate.
+Grasp score_candidate(std::span<const Eigen::Vector3f> points,
+                      std::span<const Eigen::Vector3f> normals, const Candidate& c,
+                      const Check& check, const Frames& frames, const ScoreConfig& cfg,
+                      double max_inliers);
+
+}  // namespace uwgrasp::grasp

@@ -1,0 +1,132 @@
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+#include "grasp_helpers.hpp"
+#include "objects.hpp"
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/detector.hpp"
+
+namespace uwgrasp::grasp {
+
+namespace {
+GraspConfig for_view(double camera_pitch) {
+  GraspConfig cfg;
+  cfg.frames.camera.rpy.y() = camera_pitch;
+  cfg.score.weights.inliers = 2.0;  // Table 8.5, barbell
+  return cfg;
+}
+
+// The barbell's visible side in the camera frame plus the seafloor around it, grey.
+Cloud barbell_scene(const fixtures::ObjectCloud& obj) {
+  Cloud scene = obj.cloud;
+  const Eigen::Isometry3d world_to_camera = obj.camera_from_world;
+  for (double x = -0.4; x <= 0.4; x += 0.004)
+    for (double y = -0.3; y <= 0.3; y += 0.004) {
+      if (std::abs(x) < 0.15 && std::abs(y) < 0.05) continue;  // under the object
+      scene.points.push_back((world_to_camera * Eigen::Vector3d(x, y, 0)).cast<float>());
+      scene.colors.push_back(Rgb8{90, 90, 80});
+    }
+  scene.normals.clear();
+  make_unorganised(scene);
+  return scene;
+}
+}  // namespace
+
+// On the barbell the top grasps found on the one-sided view hold against the whole solid object
+// (back faces and interior included, which the camera never saw), and are ranked.
+TEST(Detector, TopBarbellGraspsHoldAgainstTheWholeObject) {
+  const auto obj = fixtures::render_object(fixtures::Object::barbell, {}, 30000);
+  const GraspConfig cfg = for_view(obj.camera_pitch);
+  StageTimer t;
+  const ObjectGrasps r = find_grasps(obj.cloud, cfg, 0.0, 1, t);
+  ASSERT_FALSE(r.grasps.empty());
+  EXPECT_EQ(r.candidates, 3000u);
+  EXPECT_EQ(std::accumulate(r.rejections.begin(), r.rejections.end(), std::size_t(0)), r.candidates);
+  const std::vector<Eigen::Vector3f> solid = fixtures::solid_points(fixtures::Object::barbell);
+  const Gripper g = make_gripper(cfg.gripper);
+  const Eigen::Isometry3d world_from_camera = obj.camera_from_world.inverse();
+  for (std::size_t i = 0; i < r.grasps.size(); ++i) {
+    const Grasp& k = r.grasps[i];
+    if (i > 0) {
+      EXPECT_LE(k.scores.total, r.grasps[i - 1].scores.total);
+    }
+    EXPECT_LE(k.width, max_grasp_width(g) + 1e-6);
+    const Eigen::Isometry3d T_WG = world_from_camera * camera_from_gripper(k, r.frames);
+    Candidate c;
+    c.position = T_WG.translation().cast<float>();
+    c.rotation = T_WG.linear().cast<float>();
+    const Check truth = check_brute(solid, g, c);
+    EXPECT_TRUE(truth.feasible()) << "grasp " << i << ": " << reject_name(truth.reason) << " at "
+                                  << c.position.transpose();
+  }
+  for (const char* stage : {"sample", "check", "score"}) EXPECT_GT(t.ms(stage), 0.0) << stage;
+}
+
+// The whole pipeline from a scene: preprocessing removes the floor, the red object is selected.
+TEST(Detector, FullPipelineOnAScene) {
+  const auto obj = fixtures::render_object(fixtures::Object::barbell, {}, 20000);
+  const Cloud scene = barbell_scene(obj);
+  segment::SegmentConfig seg;
+  seg.color.enabled = true;  // box faces meet at 90 degrees: one object by its colour (7.4.2)
+  const Detection d = detect(scene, cloud::PreprocessConfig{}, seg, for_view(obj.camera_pitch), 1);
+  // The floor is gone and the selected segment is part of the red barbell (region growing with
+  // colour still splits it in two at the far block: 7.5k + 8.8k points of 20k).
+  EXPECT_GT(d.scene.pre.counts.plane, 20000u);
+  EXPECT_GT(d.object.size(), 5000u);
+  EXPECT_GT(d.scene.info[d.segment].intensity, 0.5f);
+  EXPECT_FALSE(d.result.grasps.empty());
+  for (const char* stage : {"plane", "normals", "segment", "select", "check"})
+    EXPECT_GT(d.timer.ms(stage), 0.0) << stage;
+}
+
+TEST(Detector, AutoPicksTheSamplerThatFindsGraspsOnTheRing) {
+  const auto ring = fixtures::render_object(fixtures::Object::ring, {}, 20000);
+  GraspConfig cfg = for_view(ring.camera_pitch);
+  cfg.sampler.kind = SamplerKind::automatic;
+  StageTimer t;
+  const ObjectGrasps r = find_grasps(ring.cloud, cfg, 0.0, 1, t);
+  EXPECT_NE(r.sampler, SamplerKind::normal);
+  EXPECT_EQ(r.candidates, 3000u);
+}
+
+TEST(Detector, NoFeasibleGraspIsAnEmptyResultNotAnError) {
+  const auto obj = fixtures::render_object(fixtures::Object::barbell, {}, 5000);
+  GraspConfig cfg = for_view(obj.camera_pitch);
+  cfg.gripper.max_aperture = 0.004f;  // nothing fits between the fingers
+  cfg.gripper.clearance = 0.0f;
+  StageTimer t;
+  const ObjectGrasps r = find_grasps(obj.cloud, cfg, 0.0, 1, t);
+  EXPECT_TRUE(r.grasps.empty());
+  EXPECT_EQ(r.feasible(), 0u);
+  EXPECT_EQ(std::accumulate(r.rejections.begin(), r.rejections.end(), std::size_t(0)), 3000u);
+}
+
+TEST(Detector, BadInputIsAClearError) {
+  const auto obj = fixtures::render_object(fixtures::Object::barbell, {}, 2000);
+  const GraspConfig good = for_view(obj.camera_pitch);
+  StageTimer t;
+  const auto message = [&](const Cloud& c, const GraspConfig& cfg) {
+    try {
+      find_grasps(c, cfg, 0.0, 1, t);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::vector<std::uint32_t> first_two{0, 1};
+  const Cloud two = select(obj.cloud, first_two);
+  EXPECT_NE(message(two, good).find("at least 3"), std::string::npos);
+  Cloud bare = obj.cloud;
+  bare.normals.clear();
+  EXPECT_NE(message(bare, good).find("normals"), std::string::npos);
+  GraspConfig w = good;
+  w.score.weights = {0, 0, 0, 0};
+  EXPECT_NE(message(obj.cloud, w).find("sum to 0"), std::string::npos);
+  GraspConfig a = good;
+  a.gripper.max_aperture = -0.05f;
+  EXPECT_NE(message(obj.cloud, a).find("gripper.max_aperture"), std::string::npos);
+  EXPECT_EQ(message(obj.cloud, good), "");
+}
+
+}  // namespace uwgrasp::grasp
