@@ -36,5 +36,6 @@ void progress(const std::string& line);
 using Runner = std::function<int()>;
 void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_config_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
+void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 
 }  // namespace uwgrasp::app

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include "uwgrasp/core/error.hpp"
@@ -73,6 +74,40 @@ TEST(Config, SetOverridesApplyAfterTheFile) {
 TEST(Config, MissingFile) {
   EXPECT_THROW(load_config("/nonexistent/uwgrasp.yaml"), Error);
   EXPECT_EQ(load_config("", {"threads=2"}).threads, 2u);
+}
+
+}  // namespace uwgrasp::io
+
+namespace uwgrasp::io {
+
+// config/thesis_*.yaml reproduce Table 8.5.
+TEST(Config, ThesisPresetsReproduceTable85) {
+  struct Row {
+    const char* file;
+    grasp::SamplerKind sampler;
+    double w_i, max_inliers;
+  };
+  for (const Row& r : {Row{"barbell", grasp::SamplerKind::normal, 2.0, 135},
+                       Row{"circle", grasp::SamplerKind::uniform, 1.0, 135},
+                       Row{"cross", grasp::SamplerKind::uniform, 1.0, 250}}) {
+    SCOPED_TRACE(r.file);
+    const Config c = load_config(std::string(UWGRASP_SOURCE_DIR) + "/config/thesis_" + r.file + ".yaml");
+    const auto& s = c.grasp.score;
+    EXPECT_EQ(c.grasp.sampler.kind, r.sampler);
+    EXPECT_EQ(c.grasp.sampler.samples, 3000u);
+    EXPECT_NEAR(c.grasp.sampler.sigma_theta.x(), std::numbers::pi / 4, 1e-15);
+    EXPECT_EQ(c.grasp.sampler.alpha_p, Eigen::Vector3d::Ones());
+    EXPECT_EQ(s.weights.normal, 1.0);
+    EXPECT_EQ(s.weights.orientation, 1.0);
+    EXPECT_EQ(s.weights.contact, 1.0);
+    EXPECT_EQ(s.weights.inliers, r.w_i);
+    EXPECT_EQ(s.orientation.form, grasp::OrientationForm::thesis);
+    EXPECT_EQ(s.orientation.roll, 0.45);
+    EXPECT_EQ(s.orientation.pitch, 0.45);
+    EXPECT_EQ(s.orientation.yaw, 0.1);
+    EXPECT_EQ(s.inlier_mode, grasp::InlierMode::fixed);
+    EXPECT_EQ(s.max_inliers, r.max_inliers);
+  }
 }
 
 }  // namespace uwgrasp::io

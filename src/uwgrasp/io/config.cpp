@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -66,6 +67,12 @@ class Reader final : public Visitor {
       if (s == "true") v = true;
       else if (s == "false") v = false;
       else fail(key(name), "expected true or false, got '" + s + "'");
+    }
+  }
+  void field(const char* name, Eigen::Vector3d& v, double lo, double hi) override {
+    if (const YAML::Node n = lookup(name)) {
+      if (!n.IsSequence() || n.size() != 3) fail(key(name), "expected three numbers [a, b, c]");
+      for (int i = 0; i < 3; ++i) v[i] = number(n[i], name, lo, hi);
     }
   }
   void choice(const char* name, std::string& v, const std::vector<std::string>& allowed) override {
@@ -144,6 +151,14 @@ class Reader final : public Visitor {
   std::vector<Frame> stack_;
 };
 
+// The shortest decimal that reads back as the same double (0.01 stays 0.01, pi/4 keeps 16
+// digits), so a written config reloads bit-exactly.
+std::string shortest(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
 class YamlWriter final : public Visitor {
  public:
   explicit YamlWriter(YAML::Emitter& e) : e_(e) {}
@@ -152,11 +167,17 @@ class YamlWriter final : public Visitor {
     body();
     e_ << YAML::EndMap;
   }
-  void field(const char* n, double& v, double, double) override { e_ << YAML::Key << n << YAML::Value << v; }
+  void field(const char* n, double& v, double, double) override {
+    e_ << YAML::Key << n << YAML::Value << shortest(v);
+  }
   void field(const char* n, float& v, double, double) override { e_ << YAML::Key << n << YAML::Value << v; }
   void field(const char* n, std::uint32_t& v, double, double) override { e_ << YAML::Key << n << YAML::Value << v; }
   void field(const char* n, std::uint64_t& v) override { e_ << YAML::Key << n << YAML::Value << v; }
   void field(const char* n, bool& v) override { e_ << YAML::Key << n << YAML::Value << v; }
+  void field(const char* n, Eigen::Vector3d& v, double, double) override {
+    e_ << YAML::Key << n << YAML::Value << YAML::Flow << YAML::BeginSeq << shortest(v.x())
+       << shortest(v.y()) << shortest(v.z()) << YAML::EndSeq;
+  }
   void choice(const char* n, std::string& v, const std::vector<std::string>&) override {
     e_ << YAML::Key << n << YAML::Value << v;
   }
@@ -185,6 +206,9 @@ class JsonWriter final : public Visitor {
   void field(const char* n, std::uint32_t& v, double, double) override { (*stack_.back())[n] = v; }
   void field(const char* n, std::uint64_t& v) override { (*stack_.back())[n] = v; }
   void field(const char* n, bool& v) override { (*stack_.back())[n] = v; }
+  void field(const char* n, Eigen::Vector3d& v, double, double) override {
+    (*stack_.back())[n] = {v.x(), v.y(), v.z()};
+  }
   void choice(const char* n, std::string& v, const std::vector<std::string>&) override {
     (*stack_.back())[n] = v;
   }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "uwgrasp/cloud/preprocess.hpp"
+#include "uwgrasp/grasp/detector.hpp"
 #include "uwgrasp/segment/pipeline.hpp"
 
 namespace uwgrasp::io {
@@ -16,6 +17,7 @@ struct Config {
   std::uint32_t threads = 0;   // 0: all cores
   cloud::PreprocessConfig preprocess;
   segment::SegmentConfig segment;
+  grasp::GraspConfig grasp;
 };
 
 // Throws Error naming the file (or "--set") and the dotted key for an unknown key, a value of

@@ -39,23 +39,6 @@ void visit_preprocess(Visitor& v, cloud::PreprocessConfig& c) {
   });
 }
 
-std::string object_by_name(segment::ObjectBy b) {
-  switch (b) {
-    case segment::ObjectBy::label: return "label";
-    case segment::ObjectBy::nearest: return "nearest";
-    case segment::ObjectBy::largest: return "largest";
-    case segment::ObjectBy::color: break;
-  }
-  return "color";
-}
-
-segment::ObjectBy object_by_value(const std::string& s) {
-  if (s == "label") return segment::ObjectBy::label;
-  if (s == "nearest") return segment::ObjectBy::nearest;
-  if (s == "largest") return segment::ObjectBy::largest;
-  return segment::ObjectBy::color;
-}
-
 void visit_segment(Visitor& v, segment::SegmentConfig& c) {
   v.section("region", [&] {
     v.field("k", c.region.k, 2, 1000);
@@ -73,9 +56,11 @@ void visit_segment(Visitor& v, segment::SegmentConfig& c) {
     v.field("merge_distance", c.color.merge_distance, 0.0, 10.0);
   });
   v.section("object", [&] {
-    std::string by = object_by_name(c.object.by);
-    v.choice("by", by, {"color", "label", "nearest", "largest"});
-    c.object.by = object_by_value(by);
+    enum_choice<segment::ObjectBy>(v, "by", c.object.by,
+                                   {{"color", segment::ObjectBy::color},
+                                    {"label", segment::ObjectBy::label},
+                                    {"nearest", segment::ObjectBy::nearest},
+                                    {"largest", segment::ObjectBy::largest}});
     v.choice("color", c.object.color, {"red", "green", "blue", "yellow", "cyan", "magenta"});
     v.field("label", c.object.label, 0, 4e9);
     v.field("min_intensity", c.object.min_intensity, 0.0, 1.0);
@@ -88,6 +73,7 @@ void visit(Visitor& v, Config& c) {
   v.field("threads", c.threads, 0, 4096);
   v.section("preprocess", [&] { visit_preprocess(v, c.preprocess); });
   v.section("segment", [&] { visit_segment(v, c.segment); });
+  v.section("grasp", [&] { visit_grasp(v, c.grasp); });
 }
 
 }  // namespace uwgrasp::io

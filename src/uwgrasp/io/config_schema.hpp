@@ -1,9 +1,11 @@
 #pragma once
 // One description of every config field (name, type, allowed range), walked by the YAML reader
 // and the YAML / JSON writers so the three can never disagree.
+#include <Eigen/Core>
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "uwgrasp/io/config.hpp"
@@ -19,8 +21,27 @@ class Visitor {
   virtual void field(const char* name, std::uint32_t& v, double lo, double hi) = 0;
   virtual void field(const char* name, std::uint64_t& v) = 0;
   virtual void field(const char* name, bool& v) = 0;
+  // Three numbers, each in [lo, hi]; a YAML sequence [a, b, c].
+  virtual void field(const char* name, Eigen::Vector3d& v, double lo, double hi) = 0;
   virtual void choice(const char* name, std::string& v, const std::vector<std::string>& allowed) = 0;
 };
+
+// An enum as a named choice: table lists (name, value) pairs, the first is the fallback.
+template <class E>
+void enum_choice(Visitor& v, const char* name, E& e,
+                 const std::vector<std::pair<std::string, E>>& table) {
+  std::string s = table.front().first;
+  std::vector<std::string> names;
+  for (const auto& [n, val] : table) {
+    names.push_back(n);
+    if (val == e) s = n;
+  }
+  v.choice(name, s, names);
+  for (const auto& [n, val] : table)
+    if (n == s) e = val;
+}
+
+void visit_grasp(Visitor& v, grasp::GraspConfig& c);
 
 void visit(Visitor& v, Config& c);
 

@@ -1,0 +1,95 @@
+// The grasp section of the config schema (gripper, frames, sampler, scoring).
+#include <numbers>
+
+#include "uwgrasp/io/config_schema.hpp"
+
+namespace uwgrasp::io {
+
+namespace {
+constexpr double kTiny = 1e-9;
+constexpr double kPi = std::numbers::pi;
+
+void visit_gripper(Visitor& v, grasp::GripperConfig& g) {
+  v.field("max_aperture", g.max_aperture, kTiny, 10.0);
+  v.field("min_aperture", g.min_aperture, 0.0, 10.0);
+  v.field("finger_length", g.finger_length, kTiny, 10.0);
+  v.field("finger_width", g.finger_width, kTiny, 10.0);
+  v.field("finger_height", g.finger_height, kTiny, 10.0);
+  v.field("palm_depth", g.palm_depth, kTiny, 10.0);
+  v.field("palm_height", g.palm_height, kTiny, 10.0);
+  v.field("body_length", g.body_length, kTiny, 10.0);
+  v.field("body_width", g.body_width, kTiny, 10.0);
+  v.field("body_height", g.body_height, kTiny, 10.0);
+  v.field("clearance", g.clearance, 0.0, 10.0);
+}
+
+void visit_mount(Visitor& v, const char* name, grasp::Mount& m) {
+  v.section(name, [&] {
+    v.field("position", m.position, -100.0, 100.0);
+    v.field("rpy", m.rpy, -2 * kPi, 2 * kPi);
+  });
+}
+
+void visit_frames(Visitor& v, grasp::FrameConfig& f) {
+  visit_mount(v, "camera", f.camera);
+  visit_mount(v, "gripper", f.gripper);
+  v.field("capture_roll", f.capture_roll, -kPi, kPi);
+  v.field("capture_pitch", f.capture_pitch, -kPi / 2, kPi / 2);
+}
+
+void visit_sampler(Visitor& v, grasp::SamplerConfig& s) {
+  using K = grasp::SamplerKind;
+  enum_choice<K>(v, "kind", s.kind,
+                 {{"normal", K::normal}, {"uniform", K::uniform}, {"surface", K::surface},
+                  {"auto", K::automatic}});
+  v.field("samples", s.samples, 1, 1e8);
+  v.field("sigma_theta", s.sigma_theta, 0.0, 2 * kPi);
+  v.field("variations", s.variations, 1, 1e6);
+  v.field("sigma_p", s.sigma_p, 0.0, 10.0);
+  v.field("alpha_p", s.alpha_p, 0.0, 100.0);
+  v.field("pilot", s.pilot, 0.01, 1.0 / 3.0);
+}
+
+void visit_score(Visitor& v, grasp::ScoreConfig& s) {
+  v.section("weights", [&] {
+    v.field("normal", s.weights.normal, 0.0, 1e6);
+    v.field("orientation", s.weights.orientation, 0.0, 1e6);
+    v.field("contact", s.weights.contact, 0.0, 1e6);
+    v.field("inliers", s.weights.inliers, 0.0, 1e6);
+  });
+  v.section("orientation", [&] {
+    using F = grasp::OrientationForm;
+    enum_choice<F>(v, "form", s.orientation.form, {{"monotone", F::monotone}, {"thesis", F::thesis}});
+    v.field("roll", s.orientation.roll, 0.0, 1e6);
+    v.field("pitch", s.orientation.pitch, 0.0, 1e6);
+    v.field("yaw", s.orientation.yaw, 0.0, 1e6);
+  });
+  v.section("inliers", [&] {
+    using M = grasp::InlierMode;
+    enum_choice<M>(v, "mode", s.inlier_mode,
+                   {{"fixed", M::fixed}, {"volume", M::volume}, {"surface", M::surface}});
+    v.field("max", s.max_inliers, 1.0, 1e9);
+  });
+  v.section("friction", [&] {
+    v.field("mu", s.mu, 0.0, 100.0);
+    v.field("required", s.require_antipodal);
+  });
+  v.field("top", s.top, 1, 1e6);
+}
+}  // namespace
+
+void visit_grasp(Visitor& v, grasp::GraspConfig& c) {
+  v.section("gripper", [&] { visit_gripper(v, c.gripper); });
+  v.section("frames", [&] { visit_frames(v, c.frames); });
+  v.section("sampler", [&] { visit_sampler(v, c.sampler); });
+  v.section("occlusion", [&] {
+    v.field("enabled", c.occlusion.enabled);
+    v.field("thickness", c.occlusion.thickness, 0.0, 10.0);
+    v.field("tolerance", c.occlusion.tolerance, 0.0, 1.0);
+    v.field("resolution", c.occlusion.resolution, 1e-4, 0.1);
+    v.field("spacing", c.occlusion.spacing, 1e-3, 1.0);
+  });
+  v.section("score", [&] { visit_score(v, c.score); });
+}
+
+}  // namespace uwgrasp::io

@@ -1,0 +1,101 @@
+#include "uwgrasp/io/grasps_json.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include "uwgrasp/io/atomic_file.hpp"
+
+namespace uwgrasp::io {
+
+namespace {
+using nlohmann::json;
+
+json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+json quat(const Eigen::Matrix3d& R) {
+  const Eigen::Quaterniond q(R);
+  return {q.x(), q.y(), q.z(), q.w()};
+}
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json pose_json(const Pose& T) {
+  return {{"position", vec(T.translation())},
+          {"orientation_xyzw", quat(T.linear())},
+          {"rpy", vec(rpy_from_matrix(T.linear()))}};
+}
+
+json grasp_json(const grasp::Grasp& g, const grasp::Frames& f, std::size_t rank) {
+  const Pose T_CG = grasp::camera_from_gripper(g, f);
+  const Pose T_CL = f.level_from_camera.inverse();
+  json j;
+  j["rank"] = rank;
+  j["position"] = vec(T_CG.translation());
+  j["orientation_xyzw"] = quat(T_CG.linear());
+  j["approach"] = vec(T_CG.linear().col(0));
+  j["closing"] = vec(T_CG.linear().col(1));
+  j["score"] = g.scores.total;
+  j["scores"] = {{"normal", g.scores.normal},
+                 {"orientation", g.scores.orientation},
+                 {"contact_left", g.scores.contact_left},
+                 {"contact_right", g.scores.contact_right},
+                 {"inliers", g.scores.inliers},
+                 {"vehicle", nullptr}};
+  j["inliers"] = g.inliers;
+  j["width"] = g.width;
+  j["contacts"] = {vec(T_CL * g.contacts[0]), vec(T_CL * g.contacts[1])};
+  j["vehicle_pose"] = pose_json(g.level_from_vehicle);
+  j["vehicle_pose"]["frame"] = "level";
+  j["hold_cost"] = nullptr;
+  j["level"] = pose_json(g.level_from_gripper);
+  j["antipodal"] = g.friction.ok;
+  j["mu_required"] = number_or_null(g.friction.mu_required);
+  j["candidate"] = g.candidate;
+  return j;
+}
+
+json timing_json(const StageTimer& t) {
+  const double pre = t.ms("finite") + t.ms("range") + t.ms("voxel") + t.ms("plane") +
+                     t.ms("outliers") + t.ms("normals");
+  return {{"preprocess", pre},
+          {"segment", t.ms("segment") + t.ms("select")},
+          {"sample", t.ms("sample")},
+          {"check", t.ms("check")},
+          {"score", t.ms("score")},
+          {"total", t.total_ms()}};
+}
+}  // namespace
+
+json grasps_to_json(const grasp::Detection& d, const Config& cfg, const std::string& input,
+                    const std::string& version) {
+  const auto& r = d.result;
+  json j;
+  j["uwgrasp_version"] = version;
+  j["input"] = std::filesystem::path(input).filename().string();
+  j["frame"] = "camera_optical";
+  j["seed"] = cfg.seed;
+  j["config"] = to_json(cfg);
+  json rejected = json::object();
+  for (int k = 1; k < grasp::kRejectKinds; ++k)
+    rejected[grasp::reject_name(static_cast<grasp::Reject>(k))] = r.rejections[k];
+  j["counts"] = {{"points_in", d.scene.pre.counts.input},
+                 {"points_after_preprocess", d.scene.pre.counts.output},
+                 {"object_points", d.object.size()},
+                 {"candidates", r.candidates},
+                 {"feasible", r.feasible()},
+                 {"rejected", rejected}};
+  j["timing_ms"] = timing_json(d.timer);
+  j["object"] = {{"centroid", vec(centroid(d.object))},
+                 {"points", d.object.size()},
+                 {"segment", d.segment}};
+  j["sampler"] = grasp::sampler_name(r.sampler);
+  j["max_inliers"] = r.max_inliers;
+  j["grasps"] = json::array();
+  for (std::size_t i = 0; i < r.grasps.size(); ++i)
+    j["grasps"].push_back(grasp_json(r.grasps[i], r.frames, i + 1));
+  return j;
+}
+
+void write_json(const std::string& path, const nlohmann::json& j) {
+  write_text(path, j.dump(2) + "\n");
+}
+
+}  // namespace uwgrasp::io
