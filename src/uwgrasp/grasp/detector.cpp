@@ -126,7 +126,8 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   out.frames = make_frames(cfg.frames);
   const LevelCloud l = to_level(object, out.frames);
   out.max_inliers = max_inliers(cfg.score, g, l, leaf);
-  timer.start("check");  // the hierarchy is part of the check's cost
+  timer.start("sample");  // first, so the stages print in pipeline order
+  timer.start("check");   // the hierarchy is part of the check's cost
   const PointBvh bvh = build_bvh(l.points);
   Pool pool;
   out.sampler = cfg.sampler.kind;
@@ -139,7 +140,10 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
     auto checks = check_candidates(bvh, g, c);
     pool.add(std::move(c), std::move(checks));
   }
-  if (cfg.occlusion.enabled) reject_occluded(object, g, out.frames, cfg.occlusion, pool);
+  if (cfg.occlusion.enabled) {
+    timer.start("occlusion");
+    reject_occluded(object, g, out.frames, cfg.occlusion, pool);
+  }
   timer.start("score");
   out.grasps = score_and_rank(l.points, l.normals, pool.candidates, pool.checks, out.frames,
                               cfg.score, out.max_inliers);

@@ -36,8 +36,8 @@ struct ObjectGrasps {
 };
 
 // The grasp engine on a segmented object (camera frame, with normals). `leaf` is the voxel size
-// for derived inlier maxima (0: the object's median point spacing). Records "sample", "check"
-// and "score" in `timer`. Throws Error for fewer than 3 points, missing normals, or an invalid
+// for derived inlier maxima (0: the object's median point spacing). Records "sample", "check",
+// "occlusion" and "score" in `timer`. Throws Error for fewer than 3 points, missing normals, or an invalid
 // gripper, sampler or weights.
 ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double leaf,
                          std::uint64_t seed, StageTimer& timer);

@@ -19,7 +19,7 @@ struct OcclusionConfig {
   float thickness = 0.03f;  // assumed depth of the object behind what the camera saw, m
   float tolerance = 0.003f; // parts may touch the surface from behind by this much, m
   float resolution = 0.003f;  // bin size of the depth map in normalised image units (~rad)
-  float spacing = 0.005f;   // test points on the gripper parts, m
+  float spacing = 0.01f;    // test points on the gripper parts, m (both faces of a finger)
 };
 
 // Nearest object depth per bin of normalised image coordinates (x/z, y/z) in the camera frame,

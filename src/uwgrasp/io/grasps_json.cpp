@@ -58,7 +58,7 @@ json timing_json(const StageTimer& t) {
   return {{"preprocess", pre},
           {"segment", t.ms("segment") + t.ms("select")},
           {"sample", t.ms("sample")},
-          {"check", t.ms("check")},
+          {"check", t.ms("check") + t.ms("occlusion")},
           {"score", t.ms("score")},
           {"total", t.total_ms()}};
 }
