@@ -13,6 +13,7 @@ struct LocalFrame {
   Eigen::Matrix3f Rt, absRt;
   Eigen::Vector3f t;
   Eigen::Vector3f world_centre, world_half;  // world-axis bounds of the whole gripper
+  Eigen::Vector3f closing_centre, closing_half;  // and of the closing region
   std::array<Eigen::Vector3f, kParts> part_centre, part_half;  // and of each solid part
 };
 
@@ -23,6 +24,8 @@ LocalFrame local_frame(const Gripper& g, const Candidate& c) {
   f.t = c.position;
   f.world_centre = c.rotation * g.bounds.centre() + c.position;
   f.world_half = c.rotation.cwiseAbs() * g.bounds.half();
+  f.closing_centre = c.rotation * g.closing.centre() + c.position;
+  f.closing_half = c.rotation.cwiseAbs() * g.closing.half();
   for (int s = 0; s < kParts; ++s) {
     f.part_centre[s] = c.rotation * g.solids[s].centre() + c.position;
     f.part_half[s] = c.rotation.cwiseAbs() * g.solids[s].half();
@@ -88,9 +91,9 @@ struct Walker {
 
   // The node's box in the gripper frame (conservative), or false when it is apart from the
   // gripper along a world axis or a gripper axis.
-  bool local_box(const BvhNode& n, const Box& target, Eigen::Vector3f& lo, Eigen::Vector3f& hi) const {
-    if (((n.centre - f.world_centre).cwiseAbs() - n.half - f.world_half).maxCoeff() > 0.0f)
-      return false;
+  bool local_box(const BvhNode& n, const Box& target, const Eigen::Vector3f& world_centre,
+                 const Eigen::Vector3f& world_half, Eigen::Vector3f& lo, Eigen::Vector3f& hi) const {
+    if (((n.centre - world_centre).cwiseAbs() - n.half - world_half).maxCoeff() > 0.0f) return false;
     const Eigen::Vector3f cl = f.Rt * (n.centre - f.t), hl = f.absRt * n.half;
     lo = cl - hl, hi = cl + hl;
     return overlaps(lo, hi, target);
@@ -100,7 +103,7 @@ struct Walker {
   Reject solids(std::uint32_t i) const {
     const BvhNode& n = bvh.nodes[i];
     Eigen::Vector3f lo, hi;
-    if (!local_box(n, g.bounds, lo, hi)) return Reject::none;
+    if (!local_box(n, g.bounds, f.world_centre, f.world_half, lo, hi)) return Reject::none;
     bool touches = false;
     for (int s = 0; s < kParts; ++s) {
       if (!overlaps(lo, hi, g.solids[s])) continue;
@@ -125,7 +128,7 @@ struct Walker {
   void closing(std::uint32_t i, Closing& acc) const {
     const BvhNode& n = bvh.nodes[i];
     Eigen::Vector3f lo, hi;
-    if (!local_box(n, g.closing, lo, hi)) return;
+    if (!local_box(n, g.closing, f.closing_centre, f.closing_half, lo, hi)) return;
     if (inside(lo, hi, g.closing) && acc.cannot_improve(lo, hi)) {
       acc.out.inliers += n.count;
       return;
