@@ -12,7 +12,10 @@
 #include <pcl/segmentation/sac_segmentation.h>
 #include <tbb/global_control.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -179,6 +182,13 @@ void whole_chain(const char* name, const Cloud& raw) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // PCL's OpenMP stages leave their threads spinning after each parallel region, which takes a
+  // core from the next stage (measured: uwgrasp's voxel grid 20 ms instead of 13 ms). libgomp reads
+  // OMP_WAIT_POLICY when it loads, so set it and start again.
+  if (!std::getenv("OMP_WAIT_POLICY")) {
+    setenv("OMP_WAIT_POLICY", "passive", 1);
+    execv("/proc/self/exe", argv);
+  }
   int threads = 0;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--repeats")) g_repeats = std::max(1, std::atoi(argv[++i]));

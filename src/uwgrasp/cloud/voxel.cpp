@@ -11,7 +11,7 @@
 #include <string>
 
 #include "uwgrasp/core/error.hpp"
-#include "uwgrasp/core/radix_sort.hpp"
+#include "uwgrasp/cloud/radix_sort.hpp"
 
 namespace uwgrasp::cloud {
 
@@ -28,8 +28,9 @@ std::uint32_t majority(std::vector<std::uint32_t>& labels) {
   return best;
 }
 
-// Appends the centroid of the points `members` (every attribute the cloud has) to `out`.
-void append_centroid(const Cloud& in, std::span<const std::uint32_t> members, Cloud& out) {
+// Writes the centroid of the points `members` (every attribute the cloud has) to slot o of `out`,
+// whose attribute vectors are already sized.
+void centroid_into(const Cloud& in, std::span<const std::uint32_t> members, Cloud& out, std::size_t o) {
   Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
   double curv = 0.0, rgb[3] = {0, 0, 0};
   std::vector<std::uint32_t> labels;
@@ -41,18 +42,27 @@ void append_centroid(const Cloud& in, std::span<const std::uint32_t> members, Cl
     if (in.has_labels()) labels.push_back(in.labels[i]);
   }
   const double c = double(members.size());
-  out.points.push_back((p / c).cast<float>());
+  out.points[o] = (p / c).cast<float>();
   if (in.has_normals()) {
     const double len = n.norm();
-    out.normals.push_back(len > 0 ? Eigen::Vector3f((n / len).cast<float>())
-                                  : Eigen::Vector3f::Constant(std::nanf("")));
+    out.normals[o] = len > 0 ? Eigen::Vector3f((n / len).cast<float>())
+                             : Eigen::Vector3f::Constant(std::nanf(""));
   }
-  if (in.has_curvature()) out.curvature.push_back(static_cast<float>(curv / c));
+  if (in.has_curvature()) out.curvature[o] = static_cast<float>(curv / c);
   if (in.has_colors()) {
     auto avg = [&](int ch) { return static_cast<std::uint8_t>(std::lround(rgb[ch] / c)); };
-    out.colors.push_back({avg(0), avg(1), avg(2)});
+    out.colors[o] = {avg(0), avg(1), avg(2)};
   }
-  if (in.has_labels()) out.labels.push_back(majority(labels));
+  if (in.has_labels()) out.labels[o] = majority(labels);
+}
+
+// Sizes every attribute the input has to n slots.
+void size_like(const Cloud& in, std::size_t n, Cloud& out) {
+  out.points.assign(n, Eigen::Vector3f::Zero());
+  if (in.has_normals()) out.normals.assign(n, Eigen::Vector3f::Zero());
+  if (in.has_curvature()) out.curvature.assign(n, 0.0f);
+  if (in.has_colors()) out.colors.assign(n, Rgb8{});
+  if (in.has_labels()) out.labels.assign(n, 0u);
 }
 
 // Voxel key of every point (kNoKey for non-finite points), as PCL computes it.
@@ -104,14 +114,26 @@ VoxelResult voxel_grid(const Cloud& in, const VoxelConfig& cfg) {
   VoxelResult res;
   res.voxel_of.assign(in.size(), VoxelResult::kDropped);
   res.cloud.viewpoint = in.viewpoint;
-  // Each run of equal keys is one voxel, already in PCL's order (ascending voxel index).
+  // Each run of equal keys is one voxel, already in PCL's order (ascending voxel index); the
+  // kept runs' centroids are independent, so they are computed in parallel.
+  std::vector<std::uint32_t> start;
   for (std::size_t a = 0, b = 0; a < keys.size(); a = b) {
     while (b < keys.size() && keys[b] == keys[a]) ++b;
-    if (b - a < std::max<std::uint32_t>(1, cfg.min_points)) continue;
-    const auto o = static_cast<std::uint32_t>(res.cloud.points.size());
-    for (std::size_t j = a; j < b; ++j) res.voxel_of[idx[j]] = o;
-    append_centroid(in, std::span<const std::uint32_t>(&idx[a], b - a), res.cloud);
+    if (b - a >= std::max<std::uint32_t>(1, cfg.min_points)) start.push_back(std::uint32_t(a));
   }
+  const auto run_end = [&](std::uint32_t a) {
+    std::size_t b = a;
+    while (b < keys.size() && keys[b] == keys[a]) ++b;
+    return b;
+  };
+  size_like(in, start.size(), res.cloud);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, start.size(), 256), [&](const auto& r) {
+    for (std::size_t o = r.begin(); o != r.end(); ++o) {
+      const std::size_t a = start[o], b = run_end(start[o]);
+      for (std::size_t j = a; j < b; ++j) res.voxel_of[idx[j]] = std::uint32_t(o);
+      centroid_into(in, std::span<const std::uint32_t>(&idx[a], b - a), res.cloud, o);
+    }
+  });
   make_unorganised(res.cloud);
   return res;
 }

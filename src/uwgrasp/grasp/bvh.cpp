@@ -5,7 +5,7 @@
 
 #include "uwgrasp/core/cloud.hpp"
 #include "uwgrasp/core/error.hpp"
-#include "uwgrasp/core/radix_sort.hpp"
+#include "uwgrasp/cloud/radix_sort.hpp"
 
 namespace uwgrasp::grasp {
 
@@ -78,7 +78,7 @@ PointBvh build_bvh(std::span<const Eigen::Vector3f> points, std::uint32_t leaf_s
     keys[i] = morton(points[i], lo, scale);
     b.index[i] = static_cast<std::uint32_t>(i);
   }
-  radix_sort(keys, b.index, 30);
+  cloud::radix_sort(keys, b.index, 30);
   b.points.resize(points.size());
   for (std::size_t k = 0; k < points.size(); ++k) b.points[k] = points[b.index[k]];
   b.nodes.reserve(2 * points.size() / std::max<std::uint32_t>(1, leaf_size / 2) + 1);

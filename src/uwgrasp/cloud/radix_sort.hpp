@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace uwgrasp {
+namespace uwgrasp::cloud {
 
 // Sorts keys (and idx alongside) on the low `bits` bits of the keys, 11 bits per pass: equal
 // keys keep their input order, so anything summed in sorted order runs in a fixed order. All
@@ -11,4 +11,4 @@ namespace uwgrasp {
 // skipped.
 void radix_sort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& idx, int bits);
 
-}  // namespace uwgrasp
+}  // namespace uwgrasp::cloud
