@@ -49,7 +49,7 @@ struct LevelObject {
 LevelObject to_level(const Cloud& c, const grasp::GraspConfig& cfg) {
   LevelObject l;
   l.frames = grasp::make_frames(cfg.frames);
-  for (const auto& p : c.points) l.points.push_back((l.frames.level_from_camera * p.cast<double>()).cast<float>());
+  l.points = grasp::points_to_level(c.points, l.frames);
   return l;
 }
 

@@ -37,8 +37,7 @@ const Barbell& barbell() {
     grasp::FrameConfig fc;
     fc.camera.rpy.y() = obj.camera_pitch;
     const grasp::Frames f = grasp::make_frames(fc);
-    for (const auto& p : obj.cloud.points)
-      out.points.push_back((f.level_from_camera * p.cast<double>()).cast<float>());
+    out.points = grasp::points_to_level(obj.cloud.points, f);
     out.candidates = grasp::sample_normal(out.points, {}, f.body_from_gripper.linear(), 1, 3000);
     return out;
   }();

@@ -127,12 +127,9 @@ TEST(Samplers, RingDefeatsTheNormalSamplerNotTheUniformOne) {
   FrameConfig fc;
   fc.camera.rpy.y() = ring.camera_pitch;
   const Frames f = make_frames(fc);
-  std::vector<Eigen::Vector3f> pts;
+  const std::vector<Eigen::Vector3f> pts = points_to_level(ring.cloud.points, f);
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
-  for (const auto& p : ring.cloud.points) {
-    pts.push_back((f.level_from_camera * p.cast<double>()).cast<float>());
-    centroid += pts.back();
-  }
+  for (const auto& p : pts) centroid += p;
   centroid /= float(pts.size());
   const Gripper g = make_gripper({});
   const PointBvh bvh = build_bvh(pts);

@@ -17,16 +17,7 @@ struct LevelCloud {
 };
 
 LevelCloud to_level(const Cloud& object, const Frames& f) {
-  const Eigen::Matrix3f R = f.level_from_camera.linear().cast<float>();
-  const Eigen::Vector3f t = f.level_from_camera.translation().cast<float>();
-  LevelCloud l;
-  l.points.reserve(object.size());
-  l.normals.reserve(object.size());
-  for (std::size_t i = 0; i < object.size(); ++i) {
-    l.points.push_back(R * object.points[i] + t);
-    l.normals.push_back(R * object.normals[i]);
-  }
-  return l;
+  return {points_to_level(object.points, f), directions_to_level(object.normals, f)};
 }
 
 std::vector<Candidate> sample(SamplerKind kind, const LevelCloud& l, const GraspConfig& cfg,

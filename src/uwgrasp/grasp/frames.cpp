@@ -33,6 +33,24 @@ Frames make_frames(const FrameConfig& cfg) {
   return f;
 }
 
+std::vector<Eigen::Vector3f> points_to_level(std::span<const Eigen::Vector3f> camera, const Frames& f) {
+  const Eigen::Matrix3f R = f.level_from_camera.linear().cast<float>();
+  const Eigen::Vector3f t = f.level_from_camera.translation().cast<float>();
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(camera.size());
+  for (const auto& p : camera) out.push_back(R * p + t);
+  return out;
+}
+
+std::vector<Eigen::Vector3f> directions_to_level(std::span<const Eigen::Vector3f> camera,
+                                                 const Frames& f) {
+  const Eigen::Matrix3f R = f.level_from_camera.linear().cast<float>();
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(camera.size());
+  for (const auto& n : camera) out.push_back(R * n);
+  return out;
+}
+
 Pose vehicle_pose(const Pose& level_from_gripper, const Frames& f) {
   return level_from_gripper * f.body_from_gripper.inverse();
 }

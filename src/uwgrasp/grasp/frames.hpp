@@ -3,6 +3,8 @@
 // level L (origin and heading of B at capture, roll = pitch = 0) and gripper G. Candidates are
 // sampled and scored in L; results are reported in C and L.
 #include <Eigen/Core>
+#include <span>
+#include <vector>
 
 #include "uwgrasp/core/pose.hpp"
 
@@ -35,6 +37,11 @@ Frames make_frames(const FrameConfig& cfg);
 
 // T_BC for a mount: the mount's rotation followed by the optical axes (z forward, x right, y down).
 Pose body_from_camera(const Mount& m);
+
+// Camera-frame points in L (T_LC p), and directions such as normals (R_LC n).
+std::vector<Eigen::Vector3f> points_to_level(std::span<const Eigen::Vector3f> camera, const Frames& f);
+std::vector<Eigen::Vector3f> directions_to_level(std::span<const Eigen::Vector3f> camera,
+                                                 const Frames& f);
 
 // The vehicle pose T_LB that puts the gripper at T_LG: T_LB = T_LG * T_BG^-1.
 Pose vehicle_pose(const Pose& level_from_gripper, const Frames& f);

@@ -3,8 +3,10 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <numeric>
 #include <string>
 
+#include "uwgrasp/core/cloud.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/core/pose.hpp"
 #include "uwgrasp/core/rng.hpp"
@@ -54,13 +56,11 @@ std::vector<Candidate> sample_normal(std::span<const Eigen::Vector3f> points,
                                      const SamplerConfig& cfg, const Eigen::Matrix3d& R_BG,
                                      std::uint64_t seed, std::uint32_t count, std::uint32_t first) {
   require_points(points, "normal");
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();  // eq. 4.5
-  for (const auto& p : points) mean += p.cast<double>();
-  mean /= double(points.size());
-  Eigen::Vector3d var = Eigen::Vector3d::Zero();  // diag of eq. 4.4
-  for (const auto& p : points) var += (p.cast<double>() - mean).array().square().matrix();
-  var /= double(points.size());
-  const Eigen::Vector3d sigma = cfg.alpha_p.cwiseProduct(var.cwiseSqrt());
+  std::vector<std::uint32_t> all(points.size());
+  std::iota(all.begin(), all.end(), 0u);
+  const MeanCovariance mc = mean_covariance(points, all);  // eq. 4.5, 4.4 over the object
+  const Eigen::Vector3d& mean = mc.mean;
+  const Eigen::Vector3d sigma = cfg.alpha_p.cwiseProduct(mc.cov.diagonal().cwiseSqrt());
   std::vector<Candidate> out(count);
   tbb::parallel_for(std::uint32_t(0), count, [&](std::uint32_t k) {
     Rng rng(seed, kNormal + first + k);
