@@ -2,9 +2,11 @@
 // frame; prints the best grasp and per-stage times, optionally writes grasps.json.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 
 #include "common.hpp"
+#include "simulation.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/grasps_json.hpp"
 #include "uwgrasp/io/pcd.hpp"
@@ -14,24 +16,43 @@ namespace uwgrasp::app {
 namespace {
 struct DetectOptions {
   CommonOptions common;
-  std::string cloud, object, sampler, json;
+  std::string cloud, object, sampler, json, png;
   std::int64_t samples = -1, top = -1;
 };
 
-// --object color:NAME | label:N | nearest | largest, as config overrides.
+// --object color:NAME | label:N | point:X,Y,Z | nearest | largest, as config overrides.
 void object_overrides(const std::string& o, std::vector<std::string>& sets) {
   if (o.empty()) return;
   const auto colon = o.find(':');
   const std::string by = o.substr(0, colon), arg = colon == std::string::npos ? "" : o.substr(colon + 1);
   const bool plain = (by == "nearest" || by == "largest") && colon == std::string::npos;
-  const bool with_arg = (by == "color" || by == "label") && !arg.empty();
+  const bool with_arg = (by == "color" || by == "label" || by == "point") && !arg.empty();
   if (!plain && !with_arg)
-    throw Error("--object '" + o + "': expected color:NAME, label:N, nearest or largest");
+    throw Error("--object '" + o + "': expected color:NAME, label:N, point:X,Y,Z, nearest or largest");
   sets.push_back("segment.object.by=" + by);
-  if (with_arg) sets.push_back("segment.object." + by + "=" + arg);
+  if (with_arg) sets.push_back("segment.object." + by + "=" + (by == "point" ? "[" + arg + "]" : arg));
 }
 
 double deg(double rad) { return rad * 180.0 / std::numbers::pi; }
+
+cv::Mat detection_picture(const Cloud& input, const grasp::Detection& d, const io::Config& cfg,
+                          const std::string& name) {
+  const auto& r = d.result;
+  viz::Picture pic;
+  pic.title = std::filesystem::path(name).filename().string() + ": top " +
+              std::to_string(r.grasps.size()) + " grasps";
+  char line[160];
+  std::snprintf(line, sizeof line, "%s sampler: %zu feasible of %zu candidates, object %zu points",
+                grasp::sampler_name(r.sampler), r.feasible(), r.candidates, d.object.size());
+  pic.legend.push_back(line);
+  if (!r.grasps.empty()) {
+    std::snprintf(line, sizeof line, "best score %.3f, width %.1f mm", r.grasps.front().scores.total,
+                  1000.0 * r.grasps.front().width);
+    pic.legend.push_back(line);
+  }
+  const auto wires = grasp_wires(r.grasps, r.frames, cfg.grasp.gripper);
+  return viz::draw(input, wires, pic, viz::View{}, d.object.points);
+}
 
 void print_vec(const char* label, const Eigen::Vector3d& v, const char* unit) {
   std::printf("%s(%8.4f, %8.4f, %8.4f)%s", label, v.x(), v.y(), v.z(), unit);
@@ -92,12 +113,13 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
   auto* cmd = app.add_subcommand("detect", "Find ranked grasps on the object of interest in a cloud");
   auto o = std::make_shared<DetectOptions>();
   cmd->add_option("CLOUD", o->cloud, ".pcd or .ply cloud in the camera optical frame")->required();
-  cmd->add_option("--object", o->object, "Object of interest: color:NAME, label:N, nearest, largest");
+  cmd->add_option("--object", o->object, "Object of interest: color:NAME, label:N, point:X,Y,Z (camera frame), nearest, largest");
   cmd->add_option("--sampler", o->sampler, "Candidate sampler")
       ->check(CLI::IsMember({"uniform", "normal", "surface", "auto"}));
   cmd->add_option("--samples", o->samples, "Number of candidates")->check(CLI::Range(1, 100000000));
   cmd->add_option("--top", o->top, "Grasps kept after ranking")->check(CLI::Range(1, 1000000));
   cmd->add_option("--json", o->json, "Write grasps.json (INTERFACE.md) here");
+  cmd->add_option("--png", o->png, "Draw the cloud and the ranked grasps (coloured by score) here");
   add_common(*cmd, o->common);
   runners.emplace_back(cmd, [o] {
     CommonOptions common = o->common;
@@ -116,6 +138,10 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
     if (!o->json.empty()) {
       io::write_json(o->json, io::grasps_to_json(d, cfg, o->cloud, UWGRASP_VERSION));
       std::printf("wrote %s\n", o->json.c_str());
+    }
+    if (!o->png.empty()) {
+      write_png(o->png, detection_picture(input, d, cfg, o->cloud));
+      std::printf("wrote %s\n", o->png.c_str());
     }
     return 0;
   });

@@ -1,9 +1,10 @@
-// uwgrasp segment CLOUD [--out-dir DIR]: preprocessing + segmentation (thesis ch. 4).
+// uwgrasp segment CLOUD [--out-dir DIR] [--png FILE]: preprocessing + segmentation (thesis ch. 4).
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "common.hpp"
+#include "simulation.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/pcd.hpp"
 #include "uwgrasp/segment/pipeline.hpp"
@@ -15,6 +16,7 @@ struct SegmentOptions {
   CommonOptions common;
   std::string cloud;
   std::string out_dir;
+  std::string png;
 };
 
 void print_table(const std::string& name, const segment::Scene& s, long selected,
@@ -86,6 +88,7 @@ void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>
   cmd->add_option("--out-dir", o->out_dir,
                   "Write segment_NNN.pcd per segment and labelled.pcd (label 0: none, k+1: "
                   "segment k) here");
+  cmd->add_option("--png", o->png, "Draw the segments, one colour each (grey: no segment), here");
   add_common(*cmd, o->common);
   runners.emplace_back(cmd, [o] {
     const Session session = open_session(o->common);
@@ -105,6 +108,15 @@ void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>
     }
     print_table(o->cloud, scene, selected, cfg.segment.object.color);
     if (!o->out_dir.empty()) write_outputs(*o, input, scene);
+    if (!o->png.empty()) {
+      viz::Picture pic;
+      pic.title = std::filesystem::path(o->cloud).filename().string() + ": " +
+                  std::to_string(scene.info.size()) + " segments";
+      pic.colour_by_label = true;
+      if (selected >= 0) pic.legend.push_back("object of interest: segment " + std::to_string(selected));
+      write_png(o->png, viz::draw(labelled_cloud(input, scene), {}, pic));
+      std::printf("wrote %s\n", o->png.c_str());
+    }
     return 0;
   });
 }

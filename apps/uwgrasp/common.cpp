@@ -1,5 +1,9 @@
 #include "common.hpp"
 
+#include <filesystem>
+
+#include "uwgrasp/core/error.hpp"
+
 #include <tbb/global_control.h>
 #include <unistd.h>
 
@@ -25,6 +29,15 @@ Session open_session(const CommonOptions& opt) {
         tbb::global_control::max_allowed_parallelism, s.config.threads);
   }
   return s;
+}
+
+std::string preset_path(const std::string& file) {
+  for (const char* dir : {UWGRASP_SOURCE_CONFIG_DIR, UWGRASP_INSTALLED_CONFIG_DIR}) {
+    const std::filesystem::path p = std::filesystem::path(dir) / file;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(p, ec)) return p.string();
+  }
+  throw Error("preset " + file + " not found in " UWGRASP_SOURCE_CONFIG_DIR " or " UWGRASP_INSTALLED_CONFIG_DIR);
 }
 
 void progress(const std::string& line) {

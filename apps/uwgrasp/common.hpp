@@ -29,6 +29,9 @@ struct Session {
 };
 Session open_session(const CommonOptions& opt);
 
+// A preset from config/: the source tree's when run from a build, else the installed copy.
+std::string preset_path(const std::string& file);
+
 // Writes one line to stderr when stderr is a terminal or --progress asked for it.
 void progress(const std::string& line);
 
@@ -37,5 +40,7 @@ using Runner = std::function<int()>;
 void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_config_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
+void add_demo_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
+void add_simulate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 
 }  // namespace uwgrasp::app

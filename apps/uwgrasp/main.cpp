@@ -12,7 +12,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1, 1);
   app.set_version_flag("--version", UWGRASP_VERSION);
   std::vector<std::pair<CLI::App*, Runner>> runners;
+  add_demo_command(app, runners);
   add_detect_command(app, runners);
+  add_simulate_command(app, runners);
   add_segment_command(app, runners);
   add_config_command(app, runners);
   try {

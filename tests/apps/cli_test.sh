@@ -91,6 +91,33 @@ if [[ -f "$MUG" ]]; then
 else
   echo "skipped the real-data CLI cases: $MUG not found"
 fi
+# Simulator: bad scenes, meshes, water and views are one-line errors with exit 2, nothing written.
+printf 'objects: [{name: a, parts: [{shape: mesh, file: %s/missing.dae}]}]\n' "$T" >"$T/nomesh.yaml"
+printf 'objects: [{name: a, parts: [{shape: mesh, file: %s/malformed.pcd}]}]\n' "$T" >"$T/badmesh.yaml"
+printf 'vehicle: {position: [0, 0, 50], rpy: [0, 1.5, 0]}\ncamera_mount: {rpy: [0, 1.5, 0]}\nseafloor: {size: 1}\n' >"$T/blind.yaml"
+printf 'water: {attenuation: [0.1, -1, 0.1]}\nobjects: [{name: a, parts: [{shape: box, size: [1, 1, 1]}]}]\n' >"$T/badwater.yaml"
+expect 2 "unknown scene 'atlantis'" -- simulate --scene atlantis --out "$T/out"
+expect 2 "missing.dae" -- simulate --scene "$T/nomesh.yaml" --out "$T/out"
+expect 2 "malformed.pcd" -- simulate --scene "$T/badmesh.yaml" --out "$T/out"
+expect 2 "sees nothing" -- simulate --scene "$T/blind.yaml" --out "$T/out"
+expect 2 "water.attenuation" -- simulate --scene "$T/badwater.yaml" --out "$T/out"
+expect 2 "hfov" -- simulate --scene barbell --set sim.camera.hfov=4 --out "$T/out"
+expect 2 "" -- simulate --scene barbell --water muddy --out "$T/out"
+expect 0 "" -- simulate --help
+expect 0 "" -- demo --help
+# A good simulation writes every file; the same seed writes identical ones at any thread count.
+if "$BIN" simulate --scene thesis --sensor stereo --water coastal --threads 1 --out "$T/s1" >/dev/null 2>&1 &&
+   "$BIN" simulate --scene thesis --sensor stereo --water coastal --threads 2 --out "$T/s2" >/dev/null 2>&1 &&
+   diff -r -x config.yaml "$T/s1" "$T/s2" >/dev/null &&
+   [[ -s $T/s1/cloud.pcd && -s $T/s1/rgb.png && -s $T/s1/depth.png && -s $T/s1/left.png && -s $T/s1/right.png &&
+      -s $T/s1/stereo.yaml && -s $T/s1/truth.yaml ]] &&
+   "$BIN" detect "$T/s1/cloud.pcd" --config "$T/s1/config.yaml" --json "$T/s1/g.json" --png "$T/s1/g.png" >/dev/null 2>&1 &&
+   [[ -s $T/s1/g.json && -s $T/s1/g.png ]]; then passes=$((passes + 1)); else
+  echo "FAIL: simulate/detect on a simulated scene"; fails=$((fails + 1)); fi
+# The demo: three objects, a grasp on each, grasps.json and grasps.png.
+if "$BIN" demo --out "$T/demo" >"$T/demo.txt" 2>&1 && [[ -s $T/demo/grasps.json && -s $T/demo/grasps.png ]] &&
+   [[ $(grep -cE '^  (barbell|ring|cross) ' "$T/demo.txt") -eq 3 ]]; then passes=$((passes + 1)); else
+  echo "FAIL: demo: $(cat "$T/demo.txt")"; fails=$((fails + 1)); fi
 # config/default.yaml is what `uwgrasp config` prints, plus comments.
 if diff <("$BIN" config) <(grep -v '^ *#' "$SRC/config/default.yaml" | sed 's/  # .*$//') >/dev/null; then passes=$((passes + 1)); else
   echo "FAIL: config/default.yaml differs from 'uwgrasp config'"; fails=$((fails + 1)); fi

@@ -40,6 +40,14 @@ Pose make_pose(const Eigen::Vector3d& t, const Eigen::Quaterniond& q) {
   return p;
 }
 
+Pose mount_pose(const Mount& m) { return make_pose(m.position, quat_from_rpy(m.rpy)); }
+
+Pose body_from_camera(const Mount& m) {
+  Pose T = mount_pose(m);
+  T.linear() = T.linear() * body_from_optical();
+  return T;
+}
+
 Eigen::Matrix3d body_from_optical() {
   Eigen::Matrix3d R;
   // Columns are the optical axes expressed in the body frame.

@@ -21,6 +21,16 @@ Pose make_pose(const Eigen::Vector3d& t, const Eigen::Quaterniond& q);
 // z forward) for a camera looking straight ahead: x_B = z_C, y_B = x_C, z_B = y_C.
 Eigen::Matrix3d body_from_optical();
 
+// A rigid mount on the vehicle: position in B (m) and roll/pitch/yaw (rad, ZYX, eq. 2.2-2.4).
+struct Mount {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+};
+Pose mount_pose(const Mount& m);
+// T_BC for a camera mount: the mount's rotation followed by the optical axes (z forward, x right,
+// y down); all-zero rpy is a camera looking straight ahead.
+Pose body_from_camera(const Mount& m);
+
 // T_LB: level frame from body frame for the vehicle's roll and pitch at capture.
 Pose level_from_body(double roll, double pitch);
 

@@ -152,7 +152,13 @@ Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   d.timer.start("select");
   if (d.scene.info.empty()) throw Error("segmentation found no segment to grasp");
   d.segment = segment::select_object(d.scene.info, seg.object);
-  d.object = select(d.scene.pre.cloud, d.scene.segmentation.segments[d.segment]);
+  std::vector<std::uint32_t> points;
+  for (const std::size_t s : segment::object_segments(d.scene.info, d.segment, seg.object)) {
+    const auto& idx = d.scene.segmentation.segments[s];
+    points.insert(points.end(), idx.begin(), idx.end());
+  }
+  std::sort(points.begin(), points.end());
+  d.object = select(d.scene.pre.cloud, points);
   d.timer.stop();
   const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;
   d.result = find_grasps(d.object, cfg, leaf, seed, d.timer);

@@ -11,15 +11,7 @@ void require_finite(const Mount& m, const char* name) {
   if (!m.position.allFinite() || !m.rpy.allFinite())
     throw Error(std::string("frames.") + name + ": position and rpy must be finite");
 }
-
-Pose mount_pose(const Mount& m) { return make_pose(m.position, quat_from_rpy(m.rpy)); }
 }  // namespace
-
-Pose body_from_camera(const Mount& m) {
-  Pose T = mount_pose(m);
-  T.linear() = T.linear() * body_from_optical();
-  return T;
-}
 
 Frames make_frames(const FrameConfig& cfg) {
   require_finite(cfg.camera, "camera");

@@ -10,11 +10,7 @@
 
 namespace uwgrasp::grasp {
 
-// A rigid mount on the vehicle: position in B (m) and roll/pitch/yaw (rad, ZYX, eq. 2.2-2.4).
-struct Mount {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
-};
+using uwgrasp::Mount;  // core/pose.hpp
 
 struct FrameConfig {
   // The camera's forward-looking frame (x along the optical axis, like B) in B; all zero is a
@@ -34,9 +30,6 @@ struct Frames {
 
 // Throws Error naming the field for a non-finite value.
 Frames make_frames(const FrameConfig& cfg);
-
-// T_BC for a mount: the mount's rotation followed by the optical axes (z forward, x right, y down).
-Pose body_from_camera(const Mount& m);
 
 // Camera-frame points in L (T_LC p), and directions such as normals (R_LC n).
 std::vector<Eigen::Vector3f> points_to_level(std::span<const Eigen::Vector3f> camera, const Frames& f);

@@ -14,6 +14,12 @@
 
 namespace uwgrasp::io {
 
+std::string shortest(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
 namespace {
 std::string show(double v) {
   std::ostringstream s;
@@ -150,14 +156,6 @@ class Reader final : public Visitor {
   std::string source_;
   std::vector<Frame> stack_;
 };
-
-// The shortest decimal that reads back as the same double (0.01 stays 0.01, pi/4 keeps 16
-// digits), so a written config reloads bit-exactly.
-std::string shortest(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
 
 class YamlWriter final : public Visitor {
  public:

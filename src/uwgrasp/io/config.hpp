@@ -9,8 +9,18 @@
 #include "uwgrasp/cloud/preprocess.hpp"
 #include "uwgrasp/grasp/detector.hpp"
 #include "uwgrasp/segment/pipeline.hpp"
+#include "uwgrasp/sim/camera.hpp"
+#include "uwgrasp/sim/water.hpp"
 
 namespace uwgrasp::io {
+
+// The simulator's sensor (`simulate`, `demo`, `experiments`); the scene itself is a file or a
+// built-in name, and may carry its own water.
+struct SimConfig {
+  sim::CameraConfig camera;
+  std::string water = "clear";  // preset: clear, coastal, turbid
+  sim::NoiseConfig noise;
+};
 
 struct Config {
   std::uint64_t seed = 1;      // every random choice derives from it
@@ -18,6 +28,7 @@ struct Config {
   cloud::PreprocessConfig preprocess;
   segment::SegmentConfig segment;
   grasp::GraspConfig grasp;
+  SimConfig sim;
 };
 
 // Throws Error naming the file (or "--set") and the dotted key for an unknown key, a value of

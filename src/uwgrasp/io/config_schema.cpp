@@ -60,10 +60,13 @@ void visit_segment(Visitor& v, segment::SegmentConfig& c) {
                                    {{"color", segment::ObjectBy::color},
                                     {"label", segment::ObjectBy::label},
                                     {"nearest", segment::ObjectBy::nearest},
-                                    {"largest", segment::ObjectBy::largest}});
+                                    {"largest", segment::ObjectBy::largest},
+                                    {"point", segment::ObjectBy::point}});
     v.choice("color", c.object.color, {"red", "green", "blue", "yellow", "cyan", "magenta"});
     v.field("label", c.object.label, 0, 4e9);
     v.field("min_intensity", c.object.min_intensity, 0.0, 1.0);
+    v.field("point", c.object.point, -1e4, 1e4);
+    v.field("merge_radius", c.object.merge_radius, 0.0, 100.0);
   });
 }
 }  // namespace
@@ -74,6 +77,7 @@ void visit(Visitor& v, Config& c) {
   v.section("preprocess", [&] { visit_preprocess(v, c.preprocess); });
   v.section("segment", [&] { visit_segment(v, c.segment); });
   v.section("grasp", [&] { visit_grasp(v, c.grasp); });
+  v.section("sim", [&] { visit_sim(v, c.sim); });
 }
 
 }  // namespace uwgrasp::io

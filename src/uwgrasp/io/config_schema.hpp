@@ -41,7 +41,12 @@ void enum_choice(Visitor& v, const char* name, E& e,
     if (n == s) e = val;
 }
 
+// The shortest decimal that reads back as the same double (0.01 stays 0.01, pi/4 keeps 16
+// digits), so written YAML reloads bit-exactly.
+std::string shortest(double v);
+
 void visit_grasp(Visitor& v, grasp::GraspConfig& c);
+void visit_sim(Visitor& v, SimConfig& c);
 
 void visit(Visitor& v, Config& c);
 

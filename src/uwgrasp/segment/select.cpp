@@ -84,6 +84,12 @@ std::size_t select_object(const std::vector<SegmentInfo>& info, const ObjectConf
       return best([](const auto& a, const auto& b) { return a.distance < b.distance; });
     case ObjectBy::largest:
       return best([](const auto& a, const auto& b) { return a.points > b.points; });
+    case ObjectBy::point: {
+      const Eigen::Vector3f p = cfg.point.cast<float>();
+      return best([&](const auto& a, const auto& b) {
+        return (a.centroid - p).squaredNorm() < (b.centroid - p).squaredNorm();
+      });
+    }
     case ObjectBy::color: {
       const std::size_t b =
           best([](const auto& a, const auto& c) { return a.intensity > c.intensity; });
@@ -96,6 +102,18 @@ std::size_t select_object(const std::vector<SegmentInfo>& info, const ObjectConf
     }
   }
   throw Error("unknown object selection mode");
+}
+
+std::vector<std::size_t> object_segments(const std::vector<SegmentInfo>& info, std::size_t selected,
+                                         const ObjectConfig& cfg) {
+  std::vector<std::size_t> out{selected};
+  if (cfg.merge_radius <= 0.0f) return out;
+  const float r2 = cfg.merge_radius * cfg.merge_radius;
+  for (std::size_t s = 0; s < info.size(); ++s)
+    if (s != selected && info[s].intensity >= cfg.min_intensity &&
+        (info[s].centroid - info[selected].centroid).squaredNorm() <= r2)
+      out.push_back(s);
+  return out;
 }
 
 }  // namespace uwgrasp::segment

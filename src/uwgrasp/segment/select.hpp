@@ -1,6 +1,7 @@
 #pragma once
 // Object-of-interest selection (thesis 7.4.2): by colour (the segment with the highest intensity
-// of the named colour wins), by segment label, nearest to the camera, or largest.
+// of the named colour wins), by segment label, nearest to the camera, largest, or the segment
+// whose centroid is nearest a given point (e.g. where a known object should be).
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
@@ -11,13 +12,18 @@
 
 namespace uwgrasp::segment {
 
-enum class ObjectBy { color, label, nearest, largest };
+enum class ObjectBy { color, label, nearest, largest, point };
 
 struct ObjectConfig {
   ObjectBy by = ObjectBy::color;
   std::string color = "red";   // red, green, blue, yellow, cyan, magenta
   std::uint32_t label = 0;     // segment number, for by = label
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // camera frame, m, for by = point
   float min_intensity = 0.15f; // a colour match needs at least this mean intensity (0-1)
+  // > 0: the object also takes every segment of the colour (intensity >= min_intensity) whose
+  // centroid lies within this distance of the selected one's, m. Objects of flat faces (boxes,
+  // bars) split into a segment per face under region growing; this gathers them again.
+  float merge_radius = 0.0f;
 };
 
 struct SegmentInfo {
@@ -38,5 +44,9 @@ std::vector<SegmentInfo> describe_segments(const Cloud& cloud, const Segmentatio
 
 // Index of the selected segment. Throws Error naming the criterion when nothing matches.
 std::size_t select_object(const std::vector<SegmentInfo>& info, const ObjectConfig& cfg);
+
+// The selected segment followed by the segments merge_radius gathers, ascending.
+std::vector<std::size_t> object_segments(const std::vector<SegmentInfo>& info, std::size_t selected,
+                                         const ObjectConfig& cfg);
 
 }  // namespace uwgrasp::segment

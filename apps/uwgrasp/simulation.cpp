@@ -1,0 +1,102 @@
+#include "simulation.hpp"
+
+#include <algorithm>
+
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/io/atomic_file.hpp"
+#include "uwgrasp/grasp/frames.hpp"
+
+#include <fstream>
+
+namespace uwgrasp::app {
+
+Simulation make_simulation(const io::Config& cfg, const std::string& scene, const std::string& water) {
+  Simulation s;
+  s.scene = io::load_scene(scene);
+  s.render.camera = cfg.sim.camera;
+  s.render.noise = cfg.sim.noise;
+  s.render.water = !water.empty()     ? sim::water_preset(water)
+                   : s.scene.water    ? *s.scene.water
+                                      : sim::water_preset(cfg.sim.water);
+  sim::check_camera(s.render.camera);
+  sim::check_water(s.render.water);
+  sim::check_noise(s.render.noise);
+  s.mount = s.scene.camera_mount.value_or(cfg.grasp.frames.camera);
+  s.world_from_camera = sim::camera_pose(s.scene, s.mount);
+  return s;
+}
+
+void use_simulation_frames(io::Config& cfg, const Simulation& s) {
+  cfg.grasp.frames.camera = s.mount;
+  cfg.grasp.frames.capture_roll = s.scene.vehicle.rpy.x();
+  cfg.grasp.frames.capture_pitch = s.scene.vehicle.rpy.y();
+}
+
+void require_depth(const sim::Frame& f, const Simulation& s) {
+  bool any = false;  // depth on the seafloor or an object (marine snow alone does not count)
+  for (std::size_t i = 0; i < f.depth.size() && !any; ++i)
+    any = f.depth[i] > 0 && f.labels[i] != sim::kLabelSnow;
+  if (!any)
+    throw Error("scene " + s.scene.name + ": the camera sees nothing within " +
+                std::to_string(s.render.camera.max_range) + " m (check vehicle pose and camera mount)");
+}
+
+io::TruthInfo truth_info(const Simulation& s, const sim::Intrinsics& k, const std::string& sensor,
+                         std::uint64_t seed) {
+  io::TruthInfo t;
+  t.sensor = sensor;
+  t.seed = seed;
+  t.world_from_camera = s.world_from_camera;
+  t.camera_mount = s.mount;
+  t.intrinsics = k;
+  t.camera = s.render.camera;
+  t.water = s.render.water;
+  t.noise = s.render.noise;
+  return t;
+}
+
+Eigen::Vector3d visible_centroid(const sim::Frame& f, const Simulation& s, std::size_t i) {
+  const auto label = static_cast<std::uint16_t>(sim::kLabelFirstObject + i);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  std::size_t n = 0;
+  for (std::size_t p = 0; p < f.labels.size(); ++p)
+    if (f.labels[p] == label && f.cloud.points[p].allFinite()) sum += f.cloud.points[p].cast<double>(), ++n;
+  if (n == 0) throw Error("scene " + s.scene.name + ": object " + s.scene.objects.at(i).name + " is not in view");
+  return sum / double(n);
+}
+
+std::vector<viz::Wire> grasp_wires(const std::vector<grasp::Grasp>& grasps, const grasp::Frames& f,
+                                   const grasp::GripperConfig& gripper) {
+  const grasp::Gripper g = grasp::make_gripper(gripper);
+  std::vector<viz::Wire> out;
+  for (const auto& gr : grasps) {
+    const Eigen::Isometry3f T = grasp::camera_from_gripper(gr, f).cast<float>();
+    viz::Wire w;
+    w.value = gr.scores.total;
+    for (const auto& box : g.solids) {
+      for (int a = 0; a < 8; ++a)
+        for (int bit = 0; bit < 3; ++bit) {
+          const int b = a | (1 << bit);
+          if (b == a) continue;
+          const auto corner = [&](int k) {
+            return Eigen::Vector3f((k & 1) ? box.hi.x() : box.lo.x(), (k & 2) ? box.hi.y() : box.lo.y(),
+                                   (k & 4) ? box.hi.z() : box.lo.z());
+          };
+          w.segments.push_back({T * corner(a), T * corner(b)});
+        }
+    }
+    out.push_back(std::move(w));
+  }
+  return out;
+}
+
+void write_png(const std::string& path, const cv::Mat& image) {
+  const std::vector<std::uint8_t> bytes = viz::encode_png(image);
+  io::write_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (!out) throw Error(tmp + ": cannot write");
+  });
+}
+
+}  // namespace uwgrasp::app

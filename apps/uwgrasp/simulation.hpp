@@ -1,0 +1,48 @@
+#pragma once
+// Shared by simulate, demo and experiments: a scene with its sensor, the detector config that
+// matches it, output files and pictures.
+#include <opencv2/core.hpp>
+
+#include <string>
+#include <vector>
+
+#include "uwgrasp/grasp/detector.hpp"
+#include "uwgrasp/io/config.hpp"
+#include "uwgrasp/io/scene_yaml.hpp"
+#include "uwgrasp/sim/render.hpp"
+#include "uwgrasp/viz/picture.hpp"
+
+namespace uwgrasp::app {
+
+struct Simulation {
+  sim::Scene scene;
+  sim::RenderConfig render;
+  Mount mount;                // the camera mount in use
+  Pose world_from_camera;     // T_WC
+};
+
+// Scene (built-in name or file) with the sensor from the config; the water is `water` if given,
+// else the scene's own, else the config's sim.water. Throws Error for bad input.
+Simulation make_simulation(const io::Config& cfg, const std::string& scene, const std::string& water);
+
+// The config's frames set to the simulated camera mount and the vehicle's attitude at capture,
+// so detections on the simulated cloud use the level frame of the scene.
+void use_simulation_frames(io::Config& cfg, const Simulation& s);
+
+// Throws Error if the frame has no depth (the camera sees nothing within range).
+void require_depth(const sim::Frame& f, const Simulation& s);
+
+io::TruthInfo truth_info(const Simulation& s, const sim::Intrinsics& k, const std::string& sensor,
+                         std::uint64_t seed);
+
+// Centroid of the points of object i the frame sees (truth labels), camera frame; Throws Error
+// if the object is not in view.
+Eigen::Vector3d visible_centroid(const sim::Frame& f, const Simulation& s, std::size_t i);
+
+// Gripper wireframes (fingers, palm, body) of ranked grasps in the camera frame, valued by score.
+std::vector<viz::Wire> grasp_wires(const std::vector<grasp::Grasp>& grasps, const grasp::Frames& f,
+                                   const grasp::GripperConfig& gripper);
+
+void write_png(const std::string& path, const cv::Mat& image);
+
+}  // namespace uwgrasp::app

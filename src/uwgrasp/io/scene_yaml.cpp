@@ -1,0 +1,202 @@
+#include "uwgrasp/io/scene_yaml.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/io/config_schema.hpp"
+
+namespace uwgrasp::io {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct Ctx {
+  std::string source, base;
+  [[noreturn]] void fail(const std::string& path, const std::string& msg) const {
+    throw Error(source + ": " + path + ": " + msg);
+  }
+  void keys(const YAML::Node& n, const std::string& path, std::initializer_list<const char*> ok) const {
+    if (!n.IsMap()) fail(path, "expected a mapping");
+    for (const auto& kv : n) {
+      const auto k = kv.first.as<std::string>();
+      if (std::none_of(ok.begin(), ok.end(), [&](const char* a) { return k == a; }))
+        fail(path.empty() ? k : path + "." + k, "unknown key");
+    }
+  }
+  double num(const YAML::Node& n, const std::string& path, double lo, double hi) const {
+    double v = 0;
+    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v)) fail(path, "expected a number");
+    if (!std::isfinite(v) || v < lo || v > hi)
+      fail(path, "value " + n.Scalar() + " is outside [" + shortest(lo) + ", " + shortest(hi) + "]");
+    return v;
+  }
+  bool flag(const YAML::Node& n, const std::string& path) const {
+    bool v = false;
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v)) fail(path, "expected true or false");
+    return v;
+  }
+  std::string text(const YAML::Node& n, const std::string& path) const {
+    if (!n.IsScalar() || n.Scalar().empty()) fail(path, "expected a non-empty string");
+    return n.Scalar();
+  }
+  Eigen::VectorXd vec(const YAML::Node& n, const std::string& path, int size, double lo, double hi) const {
+    if (!n.IsSequence() || static_cast<int>(n.size()) != size)
+      fail(path, "expected a list of " + std::to_string(size) + " numbers");
+    Eigen::VectorXd v(size);
+    for (int i = 0; i < size; ++i) v[i] = num(n[i], path + "[" + std::to_string(i) + "]", lo, hi);
+    return v;
+  }
+  Eigen::Vector3d vec3(const YAML::Node& n, const std::string& path, double lo, double hi) const {
+    return vec(n, path, 3, lo, hi);
+  }
+  Rgb8 color(const YAML::Node& n, const std::string& path) const {
+    const Eigen::Vector3d c = vec3(n, path, 0, 255);
+    return {static_cast<std::uint8_t>(std::lround(c.x())), static_cast<std::uint8_t>(std::lround(c.y())),
+            static_cast<std::uint8_t>(std::lround(c.z()))};
+  }
+  Pose pose(const YAML::Node& n, const std::string& path) const {
+    keys(n, path, {"position", "rpy", "orientation_xyzw"});
+    Pose p = Pose::Identity();
+    if (n["position"]) p.translation() = vec3(n["position"], path + ".position", -1e4, 1e4);
+    if (n["rpy"] && n["orientation_xyzw"]) fail(path, "give rpy or orientation_xyzw, not both");
+    if (n["rpy"]) p.linear() = quat_from_rpy(vec3(n["rpy"], path + ".rpy", -10, 10)).toRotationMatrix();
+    if (n["orientation_xyzw"]) {
+      const Eigen::VectorXd q = vec(n["orientation_xyzw"], path + ".orientation_xyzw", 4, -2, 2);
+      if (q.norm() < 0.5) fail(path + ".orientation_xyzw", "is not a unit quaternion");
+      p.linear() = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
+    }
+    return p;
+  }
+  Mount mount(const YAML::Node& n, const std::string& path) const {
+    const Pose p = pose(n, path);
+    return {p.translation(), rpy_from_matrix(p.linear())};
+  }
+};
+
+sim::Shape shape(const Ctx& c, const YAML::Node& n, const std::string& path) {
+  c.keys(n, path, {"shape", "size", "radius", "length", "major", "file", "scale", "pose"});
+  if (!n["shape"]) c.fail(path, "missing key 'shape' (box, cylinder, sphere, torus, mesh)");
+  const std::string kind = c.text(n["shape"], path + ".shape");
+  sim::Shape s;
+  const auto need = [&](const char* k) {
+    if (!n[k]) c.fail(path, std::string("a ") + kind + " needs '" + k + "'");
+    return n[k];
+  };
+  if (kind == "box") {
+    s.kind = sim::ShapeKind::box;
+    s.size = c.vec3(need("size"), path + ".size", 1e-4, 1e3);
+  } else if (kind == "cylinder" || kind == "sphere" || kind == "torus") {
+    s.kind = kind == "cylinder" ? sim::ShapeKind::cylinder
+             : kind == "sphere" ? sim::ShapeKind::sphere : sim::ShapeKind::torus;
+    s.radius = c.num(need("radius"), path + ".radius", 1e-4, 1e3);
+    if (kind == "cylinder") s.length = c.num(need("length"), path + ".length", 1e-4, 1e3);
+    if (kind == "torus") s.major = c.num(need("major"), path + ".major", 1e-4, 1e3);
+    if (kind == "torus" && s.major <= s.radius) c.fail(path + ".major", "must exceed radius");
+  } else if (kind == "mesh") {
+    s.kind = sim::ShapeKind::mesh;
+    const fs::path f = c.text(need("file"), path + ".file");
+    s.file = (f.is_absolute() ? f : fs::path(c.base) / f).lexically_normal().string();
+    if (n["scale"]) s.scale = c.num(n["scale"], path + ".scale", 1e-6, 1e6);
+  } else {
+    c.fail(path + ".shape", "unknown shape '" + kind + "' (box, cylinder, sphere, torus, mesh)");
+  }
+  return s;
+}
+
+sim::SceneObject object(const Ctx& c, const YAML::Node& n, const std::string& path) {
+  c.keys(n, path, {"name", "label", "color", "interest", "pose", "parts"});
+  sim::SceneObject o;
+  if (!n["name"]) c.fail(path, "missing key 'name'");
+  o.name = c.text(n["name"], path + ".name");
+  if (n["color"]) o.color = c.color(n["color"], path + ".color");
+  if (n["interest"]) o.interest = c.flag(n["interest"], path + ".interest");
+  if (n["pose"]) o.pose = c.pose(n["pose"], path + ".pose");
+  const YAML::Node parts = n["parts"];
+  if (!parts || !parts.IsSequence() || parts.size() == 0) c.fail(path + ".parts", "expected a non-empty list");
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string p = path + ".parts[" + std::to_string(i) + "]";
+    sim::Part part{shape(c, parts[i], p), Pose::Identity()};
+    if (parts[i]["pose"]) part.pose = c.pose(parts[i]["pose"], p + ".pose");
+    o.parts.push_back(part);
+  }
+  return o;
+}
+
+sim::WaterConfig water(const Ctx& c, const YAML::Node& n, const std::string& path) {
+  c.keys(n, path, {"preset", "attenuation", "veiling", "snow_density", "snow_radius", "snow_range"});
+  sim::WaterConfig w;
+  if (n["preset"]) {
+    try {
+      w = sim::water_preset(c.text(n["preset"], path + ".preset"));
+    } catch (const Error& e) {
+      c.fail(path + ".preset", e.what());
+    }
+  }
+  if (n["attenuation"]) w.attenuation = c.vec3(n["attenuation"], path + ".attenuation", 0, 100);
+  if (n["veiling"]) w.veiling = c.vec3(n["veiling"], path + ".veiling", 0, 1);
+  if (n["snow_density"]) w.snow_density = c.num(n["snow_density"], path + ".snow_density", 0, 1e5);
+  if (n["snow_radius"]) w.snow_radius = c.num(n["snow_radius"], path + ".snow_radius", 1e-5, 0.05);
+  if (n["snow_range"]) w.snow_range = c.num(n["snow_range"], path + ".snow_range", 1e-3, 20);
+  return w;
+}
+
+void seafloor(const Ctx& c, const YAML::Node& n, sim::Seafloor& s) {
+  c.keys(n, "seafloor", {"enabled", "size", "color", "texture"});
+  if (n["enabled"]) s.enabled = c.flag(n["enabled"], "seafloor.enabled");
+  if (n["size"]) s.size = c.num(n["size"], "seafloor.size", 0.01, 1e4);
+  if (n["color"]) s.color = c.color(n["color"], "seafloor.color");
+  if (n["texture"]) s.texture = c.num(n["texture"], "seafloor.texture", 0, 1);
+}
+}  // namespace
+
+sim::Scene parse_scene(const std::string& text, const std::string& source, const std::string& base) {
+  const Ctx c{source, base};
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw Error(source + ": not valid YAML: " + e.what());
+  }
+  // truth.yaml adds camera, noise, labels, sensor and seed: it stays a readable scene.
+  c.keys(root, "", {"name", "seafloor", "vehicle", "camera_mount", "water", "objects", "camera",
+                    "noise", "labels", "sensor", "seed", "uwgrasp_version"});
+  sim::Scene s;
+  s.name = root["name"] ? c.text(root["name"], "name") : fs::path(source).stem().string();
+  if (root["seafloor"]) seafloor(c, root["seafloor"], s.seafloor);
+  if (root["vehicle"]) {
+    const Pose p = c.pose(root["vehicle"], "vehicle");
+    s.vehicle = {p.translation(), rpy_from_matrix(p.linear())};
+  }
+  if (root["camera_mount"]) s.camera_mount = c.mount(root["camera_mount"], "camera_mount");
+  if (root["water"]) s.water = water(c, root["water"], "water");
+  if (const YAML::Node objs = root["objects"]) {
+    if (!objs.IsSequence()) c.fail("objects", "expected a list");
+    for (std::size_t i = 0; i < objs.size(); ++i)
+      s.objects.push_back(object(c, objs[i], "objects[" + std::to_string(i) + "]"));
+  }
+  try {
+    sim::check_scene(s);
+  } catch (const Error& e) {
+    throw Error(source + ": " + e.what());
+  }
+  return s;
+}
+
+sim::Scene load_scene(const std::string& name_or_path) {
+  const fs::path p(name_or_path);
+  const auto ext = p.extension().string();
+  if (ext != ".yaml" && ext != ".yml") return sim::builtin_scene(name_or_path);
+  std::ifstream in(p);
+  if (!in) throw Error(name_or_path + ": cannot open scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(ss.str(), name_or_path, p.parent_path().string());
+}
+
+}  // namespace uwgrasp::io

@@ -1,0 +1,58 @@
+#pragma once
+// Internal to sim/: the Embree objects behind World and a ray query that renders share.
+#include <embree3/rtcore.h>
+
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+#include "uwgrasp/sim/render.hpp"
+
+namespace uwgrasp::sim {
+
+struct Surface {
+  Eigen::Vector3f albedo = Eigen::Vector3f::Zero();  // 0-1 per channel
+  float texture = 0.0f;    // albedo modulation amplitude
+  std::uint16_t label = kLabelWater;
+};
+
+struct World::Impl {
+  Scene scene;
+  RTCDevice device = nullptr;
+  RTCScene rtc = nullptr;
+  std::vector<Surface> surfaces;  // by Embree geometry id
+  std::vector<RTCGeometry> geometries;  // retained, to attach to per-frame scenes with snow
+  std::size_t triangles = 0;
+  ~Impl();
+};
+
+// The world's geometries plus marine-snow particles (icosahedra) in one committed Embree scene,
+// released on destruction; the world's own scene when there are no particles.
+struct SnowScene {
+  RTCScene rtc = nullptr;
+  bool owned = false;
+  unsigned snow_geometry = RTC_INVALID_GEOMETRY_ID;  // the world's ids stay the same
+  SnowScene() = default;
+  SnowScene(const SnowScene&) = delete;
+  SnowScene& operator=(const SnowScene&) = delete;
+  ~SnowScene();
+};
+
+struct Hit {
+  bool hit = false;
+  float t = 0.0f;                          // along the (unnormalised) ray direction
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // unit, facing the ray
+  Surface surface;
+};
+
+// Particles in the frustum of `world_from_camera` up to the water's snow range, seeded.
+void make_snow(const World& world, const Pose& world_from_camera, const Intrinsics& k,
+               const WaterConfig& water, std::uint64_t seed, SnowScene& out);
+// Traces rays from one origin (a row of pixels: coherent, so Embree packs them).
+void trace(const World& world, const SnowScene& snow, const Eigen::Vector3f& origin,
+           std::span<const Eigen::Vector3f> dirs, float tfar, std::span<Hit> hits);
+// Albedo texture factor in [1 - amp, 1 + amp] at a world point with surface normal n (hashed
+// value noise).
+float texture_factor(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float amp);
+
+}  // namespace uwgrasp::sim

@@ -1,0 +1,101 @@
+// Plots and image conversion for PNG output.
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/viz/picture.hpp"
+
+namespace uwgrasp::viz {
+
+namespace {
+const cv::Scalar kInk(40, 40, 40);
+
+void text(cv::Mat& img, const std::string& s, cv::Point at, double scale = 0.5, int thick = 1) {
+  cv::putText(img, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, kInk, thick, cv::LINE_AA);
+}
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+}  // namespace
+
+cv::Vec3b value_colour(double t) {
+  static const cv::Mat lut = [] {
+    cv::Mat ramp(1, 256, CV_8U), out;
+    for (int i = 0; i < 256; ++i) ramp.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
+    cv::applyColorMap(ramp, out, cv::COLORMAP_VIRIDIS);
+    return out;
+  }();
+  const int i = std::clamp(static_cast<int>(std::lround((std::isfinite(t) ? t : 0.0) * 255)), 0, 255);
+  return lut.at<cv::Vec3b>(0, i);
+}
+
+cv::Vec3b label_colour(std::uint32_t label) {
+  if (label == 0) return {110, 110, 110};
+  // Golden-ratio hue steps keep neighbouring labels apart.
+  const double h = std::fmod(label * 0.618033988749895, 1.0) * 180.0;
+  cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar(h, 200, 240)), bgr;
+  cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
+  return bgr.at<cv::Vec3b>(0, 0);
+}
+
+cv::Mat histogram(std::span<const double> values, int bins, double lo, double hi,
+                  const std::string& title, const std::string& xlabel) {
+  bins = std::max(bins, 1);
+  if (lo == hi && !values.empty()) {
+    const auto [a, b] = std::minmax_element(values.begin(), values.end());
+    lo = *a, hi = *b > *a ? *b : *a + 1.0;
+  }
+  if (!(hi > lo)) hi = lo + 1.0;
+  std::vector<int> count(bins, 0);
+  for (const double v : values)
+    if (std::isfinite(v)) ++count[std::clamp(int((v - lo) / (hi - lo) * bins), 0, bins - 1)];
+  const int top = std::max(1, *std::max_element(count.begin(), count.end()));
+  cv::Mat img(480, 720, CV_8UC3, cv::Scalar(255, 255, 255));
+  const int x0 = 70, x1 = 690, y0 = 420, y1 = 60;
+  const double w = double(x1 - x0) / bins;
+  for (int b = 0; b < bins; ++b) {
+    const int h = int(double(count[b]) / top * (y0 - y1));
+    cv::rectangle(img, cv::Point(int(x0 + b * w) + 1, y0 - h), cv::Point(int(x0 + (b + 1) * w) - 1, y0),
+                  cv::Scalar(160, 110, 50), cv::FILLED);
+  }
+  cv::line(img, {x0, y0}, {x1, y0}, kInk);
+  cv::line(img, {x0, y0}, {x0, y1}, kInk);
+  for (int i = 0; i <= 4; ++i) {
+    const int x = x0 + (x1 - x0) * i / 4;
+    text(img, fmt(lo + (hi - lo) * i / 4), {x - 15, y0 + 20}, 0.45);
+    const int y = y0 - (y0 - y1) * i / 4;
+    text(img, std::to_string(top * i / 4), {x0 - 45, y + 5}, 0.45);
+  }
+  text(img, title, {x0, 35}, 0.65, 2);
+  text(img, xlabel + "  (n = " + std::to_string(values.size()) + ")", {x0 + 180, 465}, 0.5);
+  return img;
+}
+
+std::vector<std::uint8_t> encode_png(const cv::Mat& image) {
+  std::vector<std::uint8_t> out;
+  if (image.empty() || !cv::imencode(".png", image, out)) throw Error("cannot encode a PNG image");
+  return out;
+}
+
+cv::Mat rgb_image(std::span<const Rgb8> rgb, int width, int height) {
+  cv::Mat img(height, width, CV_8UC3);
+  for (int v = 0; v < height; ++v)
+    for (int u = 0; u < width; ++u) {
+      const Rgb8& c = rgb[static_cast<std::size_t>(v) * width + u];
+      img.at<cv::Vec3b>(v, u) = {c.b, c.g, c.r};
+    }
+  return img;
+}
+
+cv::Mat depth_image(std::span<const std::uint16_t> depth, int width, int height) {
+  cv::Mat img(height, width, CV_16U);
+  std::copy(depth.begin(), depth.end(), img.ptr<std::uint16_t>(0));
+  return img;
+}
+
+}  // namespace uwgrasp::viz
