@@ -1,12 +1,10 @@
 #include "simulation.hpp"
 
-#include <algorithm>
+#include <fstream>
 
 #include "uwgrasp/core/error.hpp"
-#include "uwgrasp/io/atomic_file.hpp"
 #include "uwgrasp/grasp/frames.hpp"
-
-#include <fstream>
+#include "uwgrasp/io/atomic_file.hpp"
 
 namespace uwgrasp::app {
 

@@ -47,7 +47,7 @@ Pixel shade(const Hit& h, const Eigen::Vector3f& o, const Eigen::Vector3f& d, do
   // exp(-c d) in float: the image is 8-bit, the depth does not depend on it.
   const Eigen::Array3d t =
       (-(cfg.water.attenuation.cast<float>().array() * static_cast<float>(range))).exp().cast<double>();
-  px.color = (J.array() * t + cfg.water.veiling.array() * (1.0 - t)).matrix();  // underwater_color
+  px.color = underwater_color(J, t, cfg.water);
   px.label = h.surface.label;
   if (h.t < cfg.camera.min_range || h.t > cfg.camera.max_range) return px;
   px.z = h.t;
@@ -109,7 +109,7 @@ Frame render_rgbd(const World& world, const Pose& wc, const RenderConfig& cfg, s
   const Intrinsics& k = f.intrinsics;
   const std::size_t n = static_cast<std::size_t>(k.width) * k.height;
   SnowScene snow;
-  make_snow(world, wc, k, cfg.noise.enabled ? cfg.water : WaterConfig{.snow_density = 0}, seed, snow);
+  make_snow(world, wc, k, cfg, seed, snow);
   f.rgb.resize(n);
   f.depth.resize(n);
   f.labels.resize(n);
@@ -141,7 +141,7 @@ StereoFrame render_stereo(const World& world, const Pose& wl, const RenderConfig
   wr.translation() += wl.linear().col(0) * s.baseline;
   const Intrinsics& k = s.intrinsics;
   SnowScene snow;  // one set of particles in the water, seen by both cameras
-  make_snow(world, wl, k, cfg.noise.enabled ? cfg.water : WaterConfig{.snow_density = 0}, seed, snow);
+  make_snow(world, wl, k, cfg, seed, snow);
   const std::size_t n = static_cast<std::size_t>(k.width) * k.height;
   s.left.resize(n);
   s.right.resize(n);

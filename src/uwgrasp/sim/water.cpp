@@ -51,9 +51,12 @@ Eigen::Vector3d transmission(double d, const WaterConfig& w) {
   return (-w.attenuation.array() * d).exp().matrix();
 }
 
-Eigen::Vector3d underwater_color(const Eigen::Vector3d& J, double d, const WaterConfig& w) {
-  const Eigen::Array3d t = transmission(d, w).array();
+Eigen::Vector3d underwater_color(const Eigen::Vector3d& J, const Eigen::Array3d& t, const WaterConfig& w) {
   return (J.array() * t + w.veiling.array() * (1.0 - t)).matrix();
+}
+
+Eigen::Vector3d underwater_color(const Eigen::Vector3d& J, double d, const WaterConfig& w) {
+  return underwater_color(J, transmission(d, w).array(), w);
 }
 
 double depth_sigma(double z, const NoiseConfig& n) { return n.sigma0 + n.sigma_k * z * z; }

@@ -51,6 +51,8 @@ void check_noise(const NoiseConfig& n);
 
 // The formation law above for one surface colour J (0-1 per channel) at range d.
 Eigen::Vector3d underwater_color(const Eigen::Vector3d& J, double d, const WaterConfig& w);
+// The same law for a known transmission t = exp(-c d).
+Eigen::Vector3d underwater_color(const Eigen::Vector3d& J, const Eigen::Array3d& t, const WaterConfig& w);
 // Transmission exp(-c d) per channel.
 Eigen::Vector3d transmission(double d, const WaterConfig& w);
 double depth_sigma(double z, const NoiseConfig& n);

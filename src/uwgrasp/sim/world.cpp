@@ -106,10 +106,12 @@ float texture_factor(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float a
   return 1.0f + amp * (2.0f * v - 1.0f);
 }
 
-void make_snow(const World& world, const Pose& wc, const Intrinsics& k, const WaterConfig& water,
+void make_snow(const World& world, const Pose& wc, const Intrinsics& k, const RenderConfig& cfg,
                std::uint64_t seed, SnowScene& out) {
   const World::Impl& w = world.impl();
+  const WaterConfig& water = cfg.water;
   out.rtc = w.rtc;
+  if (!cfg.noise.enabled) return;
   // Frustum volume up to range R: (1/3) (W/fx) (H/fy) R^3; the count is its expectation.
   const double R = water.snow_range;
   const double volume = (k.width / k.fx) * (k.height / k.fy) * R * R * R / 3.0;

@@ -45,9 +45,10 @@ struct Hit {
   Surface surface;
 };
 
-// Particles in the frustum of `world_from_camera` up to the water's snow range, seeded.
+// Particles in the frustum of `world_from_camera` up to the water's snow range, seeded; none
+// when the sensor noise is off (the perfect sensor).
 void make_snow(const World& world, const Pose& world_from_camera, const Intrinsics& k,
-               const WaterConfig& water, std::uint64_t seed, SnowScene& out);
+               const RenderConfig& cfg, std::uint64_t seed, SnowScene& out);
 // Traces rays from one origin (a row of pixels: coherent, so Embree packs them).
 void trace(const World& world, const SnowScene& snow, const Eigen::Vector3f& origin,
            std::span<const Eigen::Vector3f> dirs, float tfar, std::span<Hit> hits);

@@ -24,9 +24,9 @@ struct Camera {
   }
 };
 
-Eigen::Vector3f mean_of(std::span<const Eigen::Vector3f> pts, std::size_t& n) {
+Eigen::Vector3f mean_of(std::span<const Eigen::Vector3f> pts) {
   Eigen::Vector3d s = Eigen::Vector3d::Zero();
-  n = 0;
+  std::size_t n = 0;
   for (const auto& p : pts)
     if (p.allFinite()) s += p.cast<double>(), ++n;
   return n ? (s / double(n)).cast<float>() : Eigen::Vector3f(0, 0, 1);
@@ -121,8 +121,7 @@ cv::Mat draw(const Cloud& cloud, std::span<const Wire> wires, const Picture& pic
              std::span<const Eigen::Vector3f> focus) {
   cv::Mat img(view.height, view.width, CV_8UC3, kBackground);
   const std::span<const Eigen::Vector3f> around = focus.empty() ? std::span(cloud.points) : focus;
-  std::size_t n = 0;
-  const Eigen::Vector3f target = mean_of(around, n);
+  const Eigen::Vector3f target = mean_of(around);
   const Camera cam = make_camera(view, target, extent(around, target));
   draw_points(img, cloud, cam, pic);
   draw_wires(img, wires, cam, pic);
