@@ -29,22 +29,11 @@ struct ObjectRun {
   double ms = 0;
 };
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 ObjectRun detect_object(const Simulation& s, const sim::Frame& f, std::size_t i, const DemoOptions& o,
                         std::uint64_t seed) {
   ObjectRun run;
   run.name = s.scene.objects[i].name;
-  const std::string preset = run.name == "ring" ? "circle" : run.name;  // the thesis's name
-  run.cfg = io::load_config(preset_path("thesis_" + preset + ".yaml"), o.common.sets);
-  run.cfg.seed = seed;
-  use_simulation_frames(run.cfg, s);
-  // Each object's segment is the one nearest the centroid of its visible points (truth labels):
-  // the scene has three red objects.
-  run.cfg.segment.object.by = segment::ObjectBy::point;
-  run.cfg.segment.object.point = visible_centroid(f, s, i);
+  run.cfg = object_config(s, f, i, o.common.sets, seed);
   const auto t0 = std::chrono::steady_clock::now();
   run.d = grasp::detect(f.cloud, run.cfg.preprocess, run.cfg.segment, run.cfg.grasp, seed);
   run.ms = ms_since(t0);

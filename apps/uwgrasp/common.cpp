@@ -40,6 +40,10 @@ std::string preset_path(const std::string& file) {
   throw Error("preset " + file + " not found in " UWGRASP_SOURCE_CONFIG_DIR " or " UWGRASP_INSTALLED_CONFIG_DIR);
 }
 
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
 void progress(const std::string& line) {
   if (::isatty(STDERR_FILENO)) std::cerr << line << "\n";
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Options every subcommand shares, and the error policy of the CLI.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -32,6 +33,9 @@ Session open_session(const CommonOptions& opt);
 // A preset from config/: the source tree's when run from a build, else the installed copy.
 std::string preset_path(const std::string& file);
 
+// Milliseconds since t0.
+double ms_since(std::chrono::steady_clock::time_point t0);
+
 // Writes one line to stderr when stderr is a terminal or --progress asked for it.
 void progress(const std::string& line);
 
@@ -42,5 +46,8 @@ void add_config_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
 void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_demo_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_simulate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
+// Also records the command line for its report.
+void add_experiments_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners,
+                             int argc, char** argv);
 
 }  // namespace uwgrasp::app

@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "common.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/grasp/frames.hpp"
 #include "uwgrasp/io/atomic_file.hpp"
@@ -61,6 +62,17 @@ Eigen::Vector3d visible_centroid(const sim::Frame& f, const Simulation& s, std::
     if (f.labels[p] == label && f.cloud.points[p].allFinite()) sum += f.cloud.points[p].cast<double>(), ++n;
   if (n == 0) throw Error("scene " + s.scene.name + ": object " + s.scene.objects.at(i).name + " is not in view");
   return sum / double(n);
+}
+
+io::Config object_config(const Simulation& s, const sim::Frame& f, std::size_t i,
+                         const std::vector<std::string>& sets, std::uint64_t seed) {
+  const std::string& name = s.scene.objects.at(i).name;
+  io::Config cfg = io::load_config(preset_path("thesis_" + (name == "ring" ? "circle" : name) + ".yaml"), sets);
+  cfg.seed = seed;
+  use_simulation_frames(cfg, s);
+  cfg.segment.object.by = segment::ObjectBy::point;
+  cfg.segment.object.point = visible_centroid(f, s, i);
+  return cfg;
 }
 
 std::vector<viz::Wire> grasp_wires(const std::vector<grasp::Grasp>& grasps, const grasp::Frames& f,

@@ -39,6 +39,13 @@ io::TruthInfo truth_info(const Simulation& s, const sim::Intrinsics& k, const st
 // if the object is not in view.
 Eigen::Vector3d visible_centroid(const sim::Frame& f, const Simulation& s, std::size_t i);
 
+// The detector config for object i of a simulated thesis scene: its Table 8.5 preset (the ring
+// is the thesis's "circle"), then `sets`, the simulation's frames, and selection of the segment
+// nearest the centroid of the object's visible points (truth labels; the scene has three red
+// objects).
+io::Config object_config(const Simulation& s, const sim::Frame& f, std::size_t i,
+                         const std::vector<std::string>& sets, std::uint64_t seed);
+
 // Gripper wireframes (fingers, palm, body) of ranked grasps in the camera frame, valued by score.
 std::vector<viz::Wire> grasp_wires(const std::vector<grasp::Grasp>& grasps, const grasp::Frames& f,
                                    const grasp::GripperConfig& gripper);

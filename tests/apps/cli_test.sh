@@ -118,6 +118,15 @@ if "$BIN" simulate --scene thesis --sensor stereo --water coastal --threads 1 --
 if "$BIN" demo --out "$T/demo" >"$T/demo.txt" 2>&1 && [[ -s $T/demo/grasps.json && -s $T/demo/grasps.png ]] &&
    [[ $(grep -cE '^  (barbell|ring|cross) ' "$T/demo.txt") -eq 3 ]]; then passes=$((passes + 1)); else
   echo "FAIL: demo: $(cat "$T/demo.txt")"; fails=$((fails + 1)); fi
+# Experiments: bad options stop before anything is written; one short run writes the report.
+expect 2 "" -- experiments --iterations 0 --out "$T/out"
+expect 2 "" -- experiments --water muddy --out "$T/out"
+expect 2 "preprocess.voxl" -- experiments --set preprocess.voxl.leaf=1 --out "$T/out"
+expect 0 "" -- experiments --help
+if "$BIN" experiments --iterations 1 --water clear --out "$T/exp" >/dev/null 2>"$T/exp.txt" &&
+   grep -q "Table 8.4" "$T/exp/report.md" && grep -q "iteration 1/1" "$T/exp.txt" &&
+   [[ $(ls "$T/exp"/clear_fig8.1[3-6]_*.png | wc -l) -eq 4 ]]; then passes=$((passes + 1)); else
+  echo "FAIL: experiments: $(tail -3 "$T/exp.txt")"; fails=$((fails + 1)); fi
 # config/default.yaml is what `uwgrasp config` prints, plus comments.
 if diff <("$BIN" config) <(grep -v '^ *#' "$SRC/config/default.yaml" | sed 's/  # .*$//') >/dev/null; then passes=$((passes + 1)); else
   echo "FAIL: config/default.yaml differs from 'uwgrasp config'"; fails=$((fails + 1)); fi

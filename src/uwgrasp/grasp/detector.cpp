@@ -144,21 +144,26 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   return out;
 }
 
+Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cfg,
+                    std::size_t& selected) {
+  if (scene.info.empty()) throw Error("segmentation found no segment to grasp");
+  selected = segment::select_object(scene.info, cfg);
+  std::vector<std::uint32_t> points;
+  for (const std::size_t s : segment::object_segments(scene.info, selected, cfg)) {
+    const auto& idx = scene.segmentation.segments[s];
+    points.insert(points.end(), idx.begin(), idx.end());
+  }
+  std::sort(points.begin(), points.end());
+  return select(scene.pre.cloud, points);
+}
+
 Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
                  const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed) {
   Detection d;
   d.scene = segment::segment_scene(input, pre, seg, seed);
   d.timer = d.scene.timer;
   d.timer.start("select");
-  if (d.scene.info.empty()) throw Error("segmentation found no segment to grasp");
-  d.segment = segment::select_object(d.scene.info, seg.object);
-  std::vector<std::uint32_t> points;
-  for (const std::size_t s : segment::object_segments(d.scene.info, d.segment, seg.object)) {
-    const auto& idx = d.scene.segmentation.segments[s];
-    points.insert(points.end(), idx.begin(), idx.end());
-  }
-  std::sort(points.begin(), points.end());
-  d.object = select(d.scene.pre.cloud, points);
+  d.object = object_points(d.scene, seg.object, d.segment);
   d.timer.stop();
   const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;
   d.result = find_grasps(d.object, cfg, leaf, seed, d.timer);

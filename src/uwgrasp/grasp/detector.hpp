@@ -50,6 +50,12 @@ struct Detection {
   StageTimer timer;         // every stage, preprocessing to ranking
 };
 
+// The selected object's points (camera frame, with normals) in a segmented scene: the segment
+// `cfg` selects and, with a merge radius, the segments gathered around it. Throws Error when the
+// scene has no segment.
+Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cfg,
+                    std::size_t& selected);
+
 Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
                  const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed);
 

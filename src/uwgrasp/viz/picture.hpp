@@ -47,6 +47,10 @@ cv::Mat draw(const Cloud& cloud, std::span<const Wire> wires, const Picture& pic
 cv::Mat histogram(std::span<const double> values, int bins, double lo, double hi,
                   const std::string& title, const std::string& xlabel);
 
+// Tiles of one size and type laid out row by row, `columns` per row, blank (white) where the
+// last row is short. Throws Error when the tiles differ in size or type.
+cv::Mat grid(std::span<const cv::Mat> tiles, int columns);
+
 // Encodes PNG bytes; Throws Error if OpenCV cannot.
 std::vector<std::uint8_t> encode_png(const cv::Mat& image);
 // Images from the simulator's buffers: RGB8 -> BGR, and 16-bit depth as is.

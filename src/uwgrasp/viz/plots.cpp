@@ -54,7 +54,8 @@ cv::Mat histogram(std::span<const double> values, int bins, double lo, double hi
   std::vector<int> count(bins, 0);
   for (const double v : values)
     if (std::isfinite(v)) ++count[std::clamp(int((v - lo) / (hi - lo) * bins), 0, bins - 1)];
-  const int top = std::max(1, *std::max_element(count.begin(), count.end()));
+  // A multiple of 4 so the four count ticks are whole numbers.
+  const int top = (std::max(1, *std::max_element(count.begin(), count.end())) + 3) / 4 * 4;
   cv::Mat img(480, 720, CV_8UC3, cv::Scalar(255, 255, 255));
   const int x0 = 70, x1 = 690, y0 = 420, y1 = 60;
   const double w = double(x1 - x0) / bins;
@@ -74,6 +75,20 @@ cv::Mat histogram(std::span<const double> values, int bins, double lo, double hi
   text(img, title, {x0, 35}, 0.65, 2);
   text(img, xlabel + "  (n = " + std::to_string(values.size()) + ")", {x0 + 180, 465}, 0.5);
   return img;
+}
+
+cv::Mat grid(std::span<const cv::Mat> tiles, int columns) {
+  if (tiles.empty() || columns < 1) throw Error("a grid needs at least one tile and one column");
+  const cv::Mat& first = tiles.front();
+  const int rows = (static_cast<int>(tiles.size()) + columns - 1) / columns;
+  cv::Mat out(first.rows * rows, first.cols * columns, first.type(), cv::Scalar::all(255));
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    if (tiles[i].size() != first.size() || tiles[i].type() != first.type())
+      throw Error("grid tiles differ in size or type");
+    const int r = static_cast<int>(i) / columns, c = static_cast<int>(i) % columns;
+    tiles[i].copyTo(out(cv::Rect(c * first.cols, r * first.rows, first.cols, first.rows)));
+  }
+  return out;
 }
 
 std::vector<std::uint8_t> encode_png(const cv::Mat& image) {
