@@ -67,9 +67,12 @@ SegmentRun segment_once(const sim::Frame& f, const io::Config& cfg, const segmen
   r.region_ms = sc.timer.ms("segment");
   r.points = sc.pre.cloud.size();
   r.segments = sc.info.size();
-  std::vector<std::size_t> chosen;
-  if (!sc.info.empty())
-    chosen = segment::object_segments(sc.info, segment::select_object(sc.info, object), object);
+  std::vector<std::size_t> chosen;  // empty (IoU 0) when no segment passes the selection
+  try {
+    if (!sc.info.empty())
+      chosen = segment::object_segments(sc.info, segment::select_object(sc.info, object), object);
+  } catch (const Error&) {
+  }
   const Iou iou = truth_iou(segment::input_labels(sc), f.labels, sim::kLabelFirstObject, chosen);
   r.iou = iou.best;
   r.object_iou = iou.chosen;

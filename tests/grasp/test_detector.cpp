@@ -63,6 +63,25 @@ TEST(Detector, TopBarbellGraspsHoldAgainstTheWholeObject) {
   for (const char* stage : {"sample", "check", "score"}) EXPECT_GT(t.ms(stage), 0.0) << stage;
 }
 
+// score.min_inliers turns exactly the feasible candidates with fewer closing-region points into
+// too_few_inliers rejections, and no grasp it keeps has fewer.
+TEST(Detector, MinInliersRejectsOnlyTheSparseGrasps) {
+  const auto obj = fixtures::render_object(fixtures::Object::barbell, {}, 30000);
+  GraspConfig cfg = for_view(obj.camera_pitch);
+  cfg.score.top = 100000;
+  cfg.score.min_inliers = 1;
+  StageTimer t;
+  const ObjectGrasps all = find_grasps(obj.cloud, cfg, 0.0, 1, t);
+  cfg.score.min_inliers = 40;
+  const ObjectGrasps dense = find_grasps(obj.cloud, cfg, 0.0, 1, t);
+  const auto sparse = dense.rejections[static_cast<std::size_t>(Reject::too_few_inliers)];
+  const auto below = std::count_if(all.grasps.begin(), all.grasps.end(), [](const Grasp& g) { return g.inliers < 40; });
+  EXPECT_GT(below, 0);
+  EXPECT_EQ(sparse, static_cast<std::size_t>(below));
+  EXPECT_EQ(all.feasible(), dense.feasible() + sparse);
+  for (const Grasp& g : dense.grasps) EXPECT_GE(g.inliers, 40u);
+}
+
 // The whole pipeline from a scene: preprocessing removes the floor, the red object is selected.
 TEST(Detector, FullPipelineOnAScene) {
   const auto obj = fixtures::render_object(fixtures::Object::barbell, {}, 20000);

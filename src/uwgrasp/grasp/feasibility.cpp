@@ -151,7 +151,7 @@ const char* reject_name(Reject r) {
       "feasible",       "collision_left_finger", "collision_right_finger",
       "collision_palm", "collision_body",        "empty",
       "too_narrow",     "too_wide",              "occluded",
-      "not_antipodal"};
+      "not_antipodal",  "too_few_inliers"};
   return names[static_cast<int>(r)];
 }
 

@@ -25,8 +25,9 @@ enum class Reject : std::uint8_t {
   too_wide,       // width at closure above max_aperture - 2 * clearance
   occluded,       // a solid part in the object's unseen shadow (see occlusion.hpp)
   not_antipodal,  // contacts outside each other's friction cone (only when required)
+  too_few_inliers,  // fewer closing-region points than score.inliers.min (see score.hpp)
 };
-inline constexpr int kRejectKinds = 10;
+inline constexpr int kRejectKinds = 11;
 const char* reject_name(Reject r);
 
 // What the check learns about a candidate. Indices are cloud indices; ties go to the lowest.

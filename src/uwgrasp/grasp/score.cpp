@@ -42,8 +42,10 @@ std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
                                   std::span<const Candidate> candidates, std::vector<Check>& checks,
                                   const Frames& frames, const ScoreConfig& cfg, double max_inliers) {
   std::vector<std::uint32_t> feasible;
-  for (std::size_t i = 0; i < checks.size(); ++i)
+  for (std::size_t i = 0; i < checks.size(); ++i) {
+    if (checks[i].feasible() && checks[i].inliers < cfg.min_inliers) checks[i].reason = Reject::too_few_inliers;
     if (checks[i].feasible()) feasible.push_back(static_cast<std::uint32_t>(i));
+  }
   std::vector<Grasp> all(feasible.size());
   tbb::parallel_for(std::size_t(0), feasible.size(), [&](std::size_t k) {
     const std::uint32_t i = feasible[k];

@@ -21,6 +21,11 @@ struct ScoreConfig {
   OrientationConfig orientation;
   InlierMode inlier_mode = InlierMode::fixed;
   double max_inliers = 135;     // Table 8.5 (barbell, circle); 250 for the cross
+  // Fewer closing-region points than this and the grasp is rejected (too_few_inliers): a few
+  // points - a fragment, a lone edge, noise - make q_n and q_c look perfect (6.2, 6.4) while
+  // saying nothing of the surface the fingers will meet. Not in the thesis (it only rejects an
+  // empty closing region); lower it for clouds sparser than ~5 mm between points.
+  std::uint32_t min_inliers = 10;
   double mu = 0.5;              // friction coefficient for the antipodal test
   bool require_antipodal = false;  // reject grasps that are not antipodal for mu
   std::uint32_t top = 10;       // grasps kept after ranking
@@ -40,7 +45,8 @@ struct Grasp {
 };
 
 // Scores every feasible candidate (points and normals in L, indices as in the checks). A
-// candidate that fails the antipodal requirement has its check's reason set to not_antipodal.
+// candidate with fewer than cfg.min_inliers points has its check's reason set to
+// too_few_inliers, and one that fails the antipodal requirement to not_antipodal.
 // Returns the grasps ranked by total score, ties by candidate index, at most cfg.top.
 std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
                                   std::span<const Eigen::Vector3f> normals,

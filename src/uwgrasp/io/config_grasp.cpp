@@ -69,6 +69,7 @@ void visit_score(Visitor& v, grasp::ScoreConfig& s) {
     enum_choice<M>(v, "mode", s.inlier_mode,
                    {{"fixed", M::fixed}, {"volume", M::volume}, {"surface", M::surface}});
     v.field("max", s.max_inliers, 1.0, 1e9);
+    v.field("min", s.min_inliers, 1, 1e9);
   });
   v.section("friction", [&] {
     v.field("mu", s.mu, 0.0, 100.0);
