@@ -70,6 +70,7 @@ struct FinalObject {
   grasp::Frames frames;
   std::vector<grasp::Grasp> best;  // one per iteration that found a feasible grasp
   std::vector<double> feasible, detect_ms;
+  std::vector<double> coverage;    // object points / the object's visible pixels (truth labels)
   std::size_t failures = 0;        // iterations where detection stopped with an error
   std::vector<std::string> errors; // their distinct messages
   Cloud view;                      // the first iteration's frame, for the figure

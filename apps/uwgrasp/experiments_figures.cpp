@@ -88,15 +88,20 @@ void write_figures(std::ostringstream& md, const ConditionResult& r, const std::
 
 void write_overview(std::ostringstream& md, const std::vector<ConditionResult>& results) {
   md << "## Overview: the water conditions side by side\n\n"
-        "| water | object | grasp found | feasible of 3000 | best score | Table 8.3 feasible share (preset sampler) |\n"
-        "|---|---|---|---|---|---|\n";
+        "*Object coverage*: the detected object's points over the object's visible pixels (truth "
+        "labels) - near 1 when segmentation found the whole object, small when it kept a fragment, "
+        "and then the grasps are grasps on a fragment.\n\n"
+        "| water | object | object coverage | grasp found | feasible of 3000 | best score | "
+        "Table 8.3 feasible share (preset sampler) |\n"
+        "|---|---|---|---|---|---|---|\n";
   for (const auto& r : results)
     for (const auto& f : r.finals) {
       std::string share = "-";
       for (const auto& row : r.sampling)
         if (row.object == f.name && row.kind == f.cfg.grasp.sampler.kind && !row.feasible.empty())
           share = fmt("%.2f %%", 100 * summarise(row.feasible).mean / row.samples);
-      md << "| " << r.condition.name << " | " << f.name << " | " << f.best.size() << " / "
+      md << "| " << r.condition.name << " | " << f.name << " | " << median_range(f.coverage, "", "%.2f")
+         << " | " << f.best.size() << " / "
          << f.feasible.size() + f.failures << " | " << median_range(f.feasible, "", "%.0f") << " | "
          << median_range(best_scores(f, [](const grasp::Scores& s) { return s.total; }), "", "%.3f") << " | "
          << share << " |\n";

@@ -58,6 +58,9 @@ void detect_once(const Simulation& s, const sim::Frame& f, std::size_t o, const 
     const grasp::Detection d = grasp::detect(f.cloud, oc.preprocess, oc.segment, oc.grasp, seed);
     fo.detect_ms.push_back(ms_since(t0));
     fo.feasible.push_back(double(d.result.feasible()));
+    const auto label = static_cast<std::uint16_t>(sim::kLabelFirstObject + o);
+    const auto visible = std::count(f.labels.begin(), f.labels.end(), label);
+    fo.coverage.push_back(double(d.object.size()) / double(std::max<std::ptrdiff_t>(visible, 1)));
     if (!d.result.grasps.empty()) fo.best.push_back(d.result.grasps.front());
     if (fo.view.empty()) {
       fo.cfg = oc;
