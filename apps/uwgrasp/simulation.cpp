@@ -76,14 +76,15 @@ io::Config object_config(const Simulation& s, const sim::Frame& f, std::size_t i
 }
 
 std::vector<viz::Wire> grasp_wires(const std::vector<grasp::Grasp>& grasps, const grasp::Frames& f,
-                                   const grasp::GripperConfig& gripper) {
+                                   const grasp::GripperConfig& gripper, bool body) {
   const grasp::Gripper g = grasp::make_gripper(gripper);
   std::vector<viz::Wire> out;
   for (const auto& gr : grasps) {
     const Eigen::Isometry3f T = grasp::camera_from_gripper(gr, f).cast<float>();
     viz::Wire w;
     w.value = gr.scores.total;
-    for (const auto& box : g.solids) {
+    for (int part = 0; part < (body ? grasp::kParts : grasp::kParts - 1); ++part) {
+      const auto& box = g.solids[static_cast<std::size_t>(part)];
       for (int a = 0; a < 8; ++a)
         for (int bit = 0; bit < 3; ++bit) {
           const int b = a | (1 << bit);

@@ -46,9 +46,10 @@ Eigen::Vector3d visible_centroid(const sim::Frame& f, const Simulation& s, std::
 io::Config object_config(const Simulation& s, const sim::Frame& f, std::size_t i,
                          const std::vector<std::string>& sets, std::uint64_t seed);
 
-// Gripper wireframes (fingers, palm, body) of ranked grasps in the camera frame, valued by score.
+// Gripper wireframes (fingers, palm and, with `body`, the body behind the palm) of ranked grasps
+// in the camera frame, valued by score.
 std::vector<viz::Wire> grasp_wires(const std::vector<grasp::Grasp>& grasps, const grasp::Frames& f,
-                                   const grasp::GripperConfig& gripper);
+                                   const grasp::GripperConfig& gripper, bool body = true);
 
 void write_png(const std::string& path, const cv::Mat& image);
 
