@@ -74,6 +74,17 @@ void reject_occluded(const Cloud& object, const Gripper& g, const Frames& f,
   });
 }
 
+// Feasible candidates the whole vehicle cannot take (reach.hpp).
+void reject_unreachable(const Cloud& object, const Surroundings* around, const Gripper& g,
+                        const Frames& f, const ReachConfig& cfg, Pool& pool) {
+  const std::vector<Solid> solids = vehicle_solids(g, f, cfg);
+  const Surroundings fallback{object.points};
+  const Obstacles o = make_obstacles(around ? *around : fallback, f);
+  tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
+    if (pool.checks[i].feasible()) pool.checks[i].reason = reach_check(o, solids, pool.candidates[i], cfg);
+  });
+}
+
 // automatic: a pilot share on each sampler, then the rest of the budget on the one that found
 // the most feasible candidates (ties: normal, uniform, surface - the thesis's order of use).
 SamplerKind run_auto(const LevelCloud& l, const GraspConfig& cfg, const Frames& f,
@@ -102,7 +113,7 @@ SamplerKind run_auto(const LevelCloud& l, const GraspConfig& cfg, const Frames& 
 }  // namespace
 
 ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double leaf,
-                         std::uint64_t seed, StageTimer& timer) {
+                         std::uint64_t seed, StageTimer& timer, const Surroundings* around) {
   if (object.size() < 3)
     throw Error("object has " + std::to_string(object.size()) +
                 " points; grasp detection needs at least 3");
@@ -111,6 +122,8 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   const Gripper g = make_gripper(cfg.gripper);
   check_sampler(cfg.sampler);
   check_weights(cfg.score.weights);
+  if (cfg.score.weights.vehicle > 0.0 && !cfg.score.hold_cost)
+    throw Error("grasp.score.weights.vehicle > 0 needs a vehicle model for the hold cost");
   (void)orientation_score(Eigen::Vector3d::Zero(), cfg.score.orientation);  // validates weights
 
   ObjectGrasps out;
@@ -134,6 +147,10 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   if (cfg.occlusion.enabled) {
     timer.start("occlusion");
     reject_occluded(object, g, out.frames, cfg.occlusion, pool);
+  }
+  if (cfg.reach.enabled) {
+    timer.start("reach");
+    reject_unreachable(object, around, g, out.frames, cfg.reach, pool);
   }
   timer.start("score");
   out.grasps = score_and_rank(l.points, l.normals, pool.candidates, pool.checks, out.frames,
@@ -166,7 +183,9 @@ Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   d.object = object_points(d.scene, seg.object, d.segment);
   d.timer.stop();
   const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;
-  d.result = find_grasps(d.object, cfg, leaf, seed, d.timer);
+  const Surroundings around{d.scene.pre.cloud.points, d.scene.pre.plane.found,
+                            d.scene.pre.plane.coefficients};
+  d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);
   return d;
 }
 

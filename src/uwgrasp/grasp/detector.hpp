@@ -10,6 +10,7 @@
 #include "uwgrasp/grasp/frames.hpp"
 #include "uwgrasp/grasp/gripper.hpp"
 #include "uwgrasp/grasp/occlusion.hpp"
+#include "uwgrasp/grasp/reach.hpp"
 #include "uwgrasp/grasp/samplers.hpp"
 #include "uwgrasp/grasp/score.hpp"
 #include "uwgrasp/segment/pipeline.hpp"
@@ -21,6 +22,7 @@ struct GraspConfig {
   FrameConfig frames;
   SamplerConfig sampler;
   OcclusionConfig occlusion;
+  ReachConfig reach;
   ScoreConfig score;
 };
 
@@ -36,11 +38,14 @@ struct ObjectGrasps {
 };
 
 // The grasp engine on a segmented object (camera frame, with normals). `leaf` is the voxel size
-// for derived inlier maxima (0: the object's median point spacing). Records "sample", "check",
-// "occlusion" and "score" in `timer`. Throws Error for fewer than 3 points, missing normals, or an invalid
-// gripper, sampler or weights.
+// for derived inlier maxima (0: the object's median point spacing). `around` is the rest of the
+// scene for the whole-vehicle check (cfg.reach; without it only the object is an obstacle).
+// Records "sample", "check", "occlusion", "reach" and "score" in `timer`. Throws Error for fewer
+// than 3 points, missing normals, an invalid gripper, sampler, reach or weights, or a vehicle
+// weight without a hold-cost function.
 ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double leaf,
-                         std::uint64_t seed, StageTimer& timer);
+                         std::uint64_t seed, StageTimer& timer,
+                         const Surroundings* around = nullptr);
 
 struct Detection {
   segment::Scene scene;

@@ -151,7 +151,8 @@ const char* reject_name(Reject r) {
       "feasible",       "collision_left_finger", "collision_right_finger",
       "collision_palm", "collision_body",        "empty",
       "too_narrow",     "too_wide",              "occluded",
-      "not_antipodal",  "too_few_inliers"};
+      "not_antipodal",  "too_few_inliers",       "hull_collision",
+      "scene_collision", "approach_blocked",     "cannot_hold"};
   return names[static_cast<int>(r)];
 }
 

@@ -26,8 +26,12 @@ enum class Reject : std::uint8_t {
   occluded,       // a solid part in the object's unseen shadow (see occlusion.hpp)
   not_antipodal,  // contacts outside each other's friction cone (only when required)
   too_few_inliers,  // fewer closing-region points than score.inliers.min (see score.hpp)
+  hull_collision,    // the vehicle's hull hits the scene at the grasp pose (see reach.hpp)
+  scene_collision,   // a gripper part hits the scene (not the object) or the seafloor there
+  approach_blocked,  // hull or gripper hits the scene on the way in from the standoff
+  cannot_hold,       // holding the vehicle's attitude needs more than its thrusters give
 };
-inline constexpr int kRejectKinds = 11;
+inline constexpr int kRejectKinds = 15;
 const char* reject_name(Reject r);
 
 // What the check learns about a candidate. Indices are cloud indices; ties go to the lowest.

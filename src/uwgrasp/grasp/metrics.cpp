@@ -80,14 +80,15 @@ double max_inliers_surface(const Eigen::Vector3f& size, double leaf) {
 
 double total_score(const Scores& s, const Weights& w) {
   return w.normal * s.normal + w.orientation * s.orientation +
-         w.contact * (s.contact_left + s.contact_right) + w.inliers * s.inliers;
+         w.contact * (s.contact_left + s.contact_right) + w.inliers * s.inliers +
+         w.vehicle * s.vehicle;
 }
 
 void check_weights(const Weights& w) {
-  for (double v : {w.normal, w.orientation, w.contact, w.inliers})
+  for (double v : {w.normal, w.orientation, w.contact, w.inliers, w.vehicle})
     if (!std::isfinite(v) || v < 0.0)
       throw Error("grasp.score.weights must be finite and >= 0, got " + std::to_string(v));
-  if (w.normal + w.orientation + w.contact + w.inliers <= 0.0)
+  if (w.normal + w.orientation + w.contact + w.inliers + w.vehicle <= 0.0)
     throw Error("grasp.score.weights sum to 0: no grasp could be ranked");
 }
 

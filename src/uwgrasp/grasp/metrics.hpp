@@ -60,12 +60,16 @@ double max_inliers_surface(const Eigen::Vector3f& closing_size, double leaf);
 
 struct Weights {
   double normal = 1.0, orientation = 1.0, contact = 1.0, inliers = 1.0;  // Table 8.5
+  // q_v, what holding the attitude costs the thrusters (see ScoreConfig::hold_cost); 0 keeps the
+  // thesis's q_tot, which scores attitude by q_o alone.
+  double vehicle = 0.0;
 };
 struct Scores {
   double normal = 0, orientation = 0, contact_left = 0, contact_right = 0, inliers = 0;
+  double vehicle = 0;  // q_v = 1 - thruster utilisation of the hold; 0 when no model was given
   double total = 0;
 };
-// Eq. 6.8: q_tot = w_n q_n + w_o q_o + w_c q_cl + w_c q_cr + w_i q_i.
+// Eq. 6.8 plus the vehicle term: q_tot = w_n q_n + w_o q_o + w_c q_cl + w_c q_cr + w_i q_i + w_v q_v.
 double total_score(const Scores& s, const Weights& w);
 // Throws Error when a weight is negative or not finite, or all are 0.
 void check_weights(const Weights& w);

@@ -33,6 +33,10 @@ Grasp score_candidate(std::span<const Eigen::Vector3f> points,
   g.scores.contact_right = cs.right;
   g.friction = antipodal(cs, cfg.mu);
   g.scores.inliers = inlier_score(g.inliers, max_inliers);
+  if (cfg.hold_cost) {
+    g.hold_cost = cfg.hold_cost(g.vehicle_rpy);
+    g.scores.vehicle = std::clamp(1.0 - g.hold_cost, 0.0, 1.0);
+  }
   g.scores.total = total_score(g.scores, cfg.weights);
   return g;
 }
@@ -52,13 +56,12 @@ std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
     all[k] = score_candidate(points, normals, candidates[i], checks[i], frames, cfg, max_inliers);
     all[k].candidate = i;
   });
-  if (cfg.require_antipodal) {
-    std::erase_if(all, [&](const Grasp& g) {
-      if (g.friction.ok) return false;
-      checks[g.candidate].reason = Reject::not_antipodal;
-      return true;
-    });
-  }
+  std::erase_if(all, [&](const Grasp& g) {
+    if (cfg.require_antipodal && !g.friction.ok) checks[g.candidate].reason = Reject::not_antipodal;
+    else if (g.hold_cost > 1.0) checks[g.candidate].reason = Reject::cannot_hold;
+    else return false;
+    return true;
+  });
   const auto better = [](const Grasp& a, const Grasp& b) {
     if (a.scores.total != b.scores.total) return a.scores.total > b.scores.total;
     return a.candidate < b.candidate;

@@ -2,6 +2,8 @@
 // Scoring and ranking of the feasible candidates (thesis 6.2-6.6).
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -16,6 +18,11 @@ namespace uwgrasp::grasp {
 // voxel size (see max_inliers_volume / max_inliers_surface).
 enum class InlierMode { fixed, volume, surface };
 
+// The vehicle's cost of holding the attitude (roll, pitch, yaw of T_LB) a grasp needs: the share
+// of the thrusters' limit the hold takes (vehicle::hold_cost), above 1 when it cannot be held.
+// Passed in by the caller, so the grasp engine needs no vehicle model; it must be thread-safe.
+using HoldCostFn = std::function<double(const Eigen::Vector3d& rpy)>;
+
 struct ScoreConfig {
   Weights weights;
   OrientationConfig orientation;
@@ -29,6 +36,9 @@ struct ScoreConfig {
   double mu = 0.5;              // friction coefficient for the antipodal test
   bool require_antipodal = false;  // reject grasps that are not antipodal for mu
   std::uint32_t top = 10;       // grasps kept after ranking
+  // Empty: no hold cost, q_v = 0 (weights.vehicle must then be 0). Set: q_v = 1 - cost, and
+  // grasps whose attitude cannot be held are rejected as cannot_hold.
+  HoldCostFn hold_cost;
 };
 
 struct Grasp {
@@ -42,11 +52,13 @@ struct Grasp {
   std::uint32_t contact_index[2] = {0, 0};  // object points: left, right
   Eigen::Vector3d contacts[2];     // in L
   Antipodal friction;
+  double hold_cost = std::numeric_limits<double>::quiet_NaN();  // utilisation; NaN: not computed
 };
 
 // Scores every feasible candidate (points and normals in L, indices as in the checks). A
 // candidate with fewer than cfg.min_inliers points has its check's reason set to
-// too_few_inliers, and one that fails the antipodal requirement to not_antipodal.
+// too_few_inliers, one that fails the antipodal requirement to not_antipodal, and one whose
+// attitude the vehicle cannot hold to cannot_hold.
 // Returns the grasps ranked by total score, ties by candidate index, at most cfg.top.
 std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
                                   std::span<const Eigen::Vector3f> normals,

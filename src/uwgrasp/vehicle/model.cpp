@@ -63,10 +63,8 @@ void check_params(const VehicleParams& p) {
   require(p.volume > 0, "volume", p.volume, "must be positive");
   require(p.rho > 0, "rho", p.rho, "must be positive");
   require(p.gravity > 0, "gravity", p.gravity, "must be positive");
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 3; ++i)
     require(p.inertia[i] > 0, "inertia", p.inertia[i], "every moment of inertia must be positive");
-    require(p.hull_size[i] > 0, "hull.size", p.hull_size[i], "must be positive");
-  }
   for (int i = 0; i < 6; ++i) {
     require(p.added_mass[i] >= 0, "added_mass", p.added_mass[i], "magnitudes must be >= 0");
     require(p.linear_damping[i] >= 0, "linear_damping", p.linear_damping[i], "magnitudes must be >= 0");
@@ -74,8 +72,10 @@ void check_params(const VehicleParams& p) {
   }
   require(p.thrust_min < 0, "thrust.min", p.thrust_min, "must be negative (reverse thrust)");
   require(p.thrust_max > 0, "thrust.max", p.thrust_max, "must be positive");
-  for (const auto& t : p.thrusters)
-    require(t.direction.norm() > 1e-9, "thrusters.direction", t.direction.norm(), "must not be zero");
+  for (std::size_t i = 0; i < p.thrusters.size(); ++i)
+    require(p.thrusters[i].direction.norm() > 1e-9 && p.thrusters[i].position.allFinite(),
+            "thrusters.t" + std::to_string(i + 1) + ".direction", p.thrusters[i].direction.norm(),
+            "must be finite and not zero");
 }
 
 Matrix6d rigid_body_mass(const VehicleParams& p) {

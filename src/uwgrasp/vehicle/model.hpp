@@ -35,9 +35,6 @@ struct VehicleParams {
   std::vector<Thruster> thrusters;  // empty: the Heavy's eight (heavy_thrusters())
   double thrust_min = -40.0;        // N per thruster (reverse)
   double thrust_max = 40.0;         // N per thruster (forward)
-  // The hull as a box in B, for whole-vehicle collision checks.
-  Eigen::Vector3d hull_size = {0.457, 0.575, 0.254};
-  Eigen::Vector3d hull_centre = Eigen::Vector3d::Zero();
 };
 
 // The Heavy's eight T200s placed so that their allocation matrix is von Benzon's K: four

@@ -1,0 +1,163 @@
+#include "uwgrasp/grasp/reach.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <string>
+
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::grasp {
+
+namespace {
+// Where a solid meets a point along the approach: the gripper at offset t (0 = the grasp pose,
+// s = the standoff) holds gripper-frame point q at q + t x, so a point is hit for the t in
+// [0, s] where the segment q + t x is inside the box (slab test).
+enum class Hit { none, on_approach, at_grasp };  // ordered: the worst is the largest
+
+Hit segment_hit(const Solid& b, const Eigen::Vector3f& q, float s) {
+  const Eigen::Vector3f p = b.rotation.transpose() * (q - b.centre);
+  const Eigen::Vector3f d = b.rotation.row(0).transpose();  // R^T e_x
+  float t0 = 0.0f, t1 = s;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) < 1e-9f) {
+      if (std::abs(p[i]) > b.half[i]) return Hit::none;
+      continue;
+    }
+    float a = (-b.half[i] - p[i]) / d[i], c = (b.half[i] - p[i]) / d[i];
+    if (a > c) std::swap(a, c);
+    t0 = std::max(t0, a), t1 = std::min(t1, c);
+    if (t0 > t1) return Hit::none;
+  }
+  return t0 <= 0.0f ? Hit::at_grasp : Hit::on_approach;
+}
+
+// The solid's eight corners in L at offset t along the approach.
+std::array<Eigen::Vector3f, 8> corners(const Solid& b, const Candidate& c, float t) {
+  std::array<Eigen::Vector3f, 8> out;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3f sign((k & 1) ? 1.f : -1.f, (k & 2) ? 1.f : -1.f, (k & 4) ? 1.f : -1.f);
+    const Eigen::Vector3f g = b.centre + b.rotation * sign.cwiseProduct(b.half) - t * Eigen::Vector3f::UnitX();
+    out[static_cast<std::size_t>(k)] = c.rotation * g + c.position;
+  }
+  return out;
+}
+
+// The plane is convex and the sweep linear in t, so the corners at both ends decide.
+Hit plane_hit(const Obstacles& o, const Solid& b, const Candidate& c, float s, float tol) {
+  if (!o.has_plane) return Hit::none;
+  const auto below = [&](float t) {
+    for (const auto& p : corners(b, c, t))
+      if (o.plane.head<3>().dot(p) + o.plane[3] < -tol) return true;
+    return false;
+  };
+  if (below(0.0f)) return Hit::at_grasp;
+  return below(s) ? Hit::on_approach : Hit::none;
+}
+
+struct Query {
+  const PointBvh& bvh;
+  const Solid& solid;
+  const Candidate& c;
+  float s;
+  Eigen::Vector3f lo, hi;  // the swept solid's bounds in L
+
+  // The worst hit under node i: at_grasp ends the search.
+  Hit walk(std::uint32_t i) const {
+    const BvhNode& n = bvh.nodes[i];
+    if (((n.centre - n.half).array() > hi.array()).any() ||
+        ((n.centre + n.half).array() < lo.array()).any())
+      return Hit::none;
+    if (!n.leaf()) {
+      const Hit a = walk(i + 1);
+      if (a == Hit::at_grasp) return a;
+      return std::max(a, walk(n.right));
+    }
+    Hit worst = Hit::none;
+    const Eigen::Matrix3f Rt = c.rotation.transpose();
+    for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+      worst = std::max(worst, segment_hit(solid, Rt * (bvh.points[k] - c.position), s));
+      if (worst == Hit::at_grasp) break;
+    }
+    return worst;
+  }
+};
+
+Reject verdict(const std::vector<Hit>& hits, std::span<const Solid> solids) {
+  for (std::size_t k = 0; k < hits.size(); ++k)
+    if (hits[k] == Hit::at_grasp) return solids[k].at_grasp;
+  for (const Hit h : hits)
+    if (h == Hit::on_approach) return Reject::approach_blocked;
+  return Reject::none;
+}
+}  // namespace
+
+std::vector<Solid> vehicle_solids(const Gripper& g, const Frames& f, const ReachConfig& cfg) {
+  if (!(cfg.hull_size.array() > 0.0).all() || !cfg.hull_size.allFinite())
+    throw Error("grasp.reach.hull_size must be positive");
+  if (!(cfg.standoff >= 0.0) || !(cfg.margin >= 0.0) || !(cfg.floor_tolerance >= 0.0))
+    throw Error("grasp.reach: standoff, margin and floor_tolerance must be >= 0");
+  const Pose gripper_from_body = f.body_from_gripper.inverse();
+  std::vector<Solid> out;
+  Solid hull;
+  hull.centre = (gripper_from_body * cfg.hull_centre).cast<float>();
+  hull.rotation = gripper_from_body.linear().cast<float>();
+  hull.half = (0.5 * cfg.hull_size + Eigen::Vector3d::Constant(cfg.margin)).cast<float>();
+  out.push_back(hull);
+  for (int k = 0; k < kParts; ++k) {
+    const Box& b = g.solids[static_cast<std::size_t>(k)];
+    Solid s;
+    s.centre = b.centre(), s.half = b.half();
+    s.at_grasp = Reject::scene_collision;
+    out.push_back(s);
+  }
+  return out;
+}
+
+Obstacles make_obstacles(const Surroundings& s, const Frames& f) {
+  Obstacles o;
+  if (!s.points.empty()) o.bvh = build_bvh(points_to_level(s.points, f));
+  if (s.has_plane) {
+    // n.p + d = 0 in C becomes n_L.p_L + d_L = 0 with n_L = R_LC n, d_L = d - n_L.t_LC.
+    const Eigen::Vector3d n = f.level_from_camera.linear() * s.plane.head<3>().cast<double>();
+    double d = s.plane[3] - n.dot(f.level_from_camera.translation());
+    Eigen::Vector3d nn = n;
+    if (nn.dot(f.level_from_camera.translation()) + d < 0.0) nn = -nn, d = -d;  // camera side +
+    o.has_plane = true;
+    o.plane << nn.cast<float>(), static_cast<float>(d);
+  }
+  return o;
+}
+
+Reject reach_check(const Obstacles& o, std::span<const Solid> solids, const Candidate& c,
+                   const ReachConfig& cfg) {
+  const float s = static_cast<float>(cfg.standoff);
+  std::vector<Hit> hits(solids.size(), Hit::none);
+  for (std::size_t k = 0; k < solids.size(); ++k) {
+    hits[k] = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
+    if (hits[k] == Hit::at_grasp) return solids[k].at_grasp;
+    if (o.bvh.nodes.empty()) continue;
+    Query q{o.bvh, solids[k], c, s, Eigen::Vector3f::Constant(std::numeric_limits<float>::max()),
+            Eigen::Vector3f::Constant(std::numeric_limits<float>::lowest())};
+    for (float t : {0.0f, s})
+      for (const auto& p : corners(solids[k], c, t)) q.lo = q.lo.cwiseMin(p), q.hi = q.hi.cwiseMax(p);
+    hits[k] = std::max(hits[k], q.walk(0));
+    if (hits[k] == Hit::at_grasp) return solids[k].at_grasp;
+  }
+  return verdict(hits, solids);
+}
+
+Reject reach_brute(std::span<const Eigen::Vector3f> level_points, const Obstacles& o,
+                   std::span<const Solid> solids, const Candidate& c, const ReachConfig& cfg) {
+  const float s = static_cast<float>(cfg.standoff);
+  std::vector<Hit> hits(solids.size(), Hit::none);
+  const Eigen::Matrix3f Rt = c.rotation.transpose();
+  for (std::size_t k = 0; k < solids.size(); ++k) {
+    hits[k] = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
+    for (const auto& p : level_points)
+      hits[k] = std::max(hits[k], segment_hit(solids[k], Rt * (p - c.position), s));
+  }
+  return verdict(hits, solids);
+}
+
+}  // namespace uwgrasp::grasp
