@@ -89,7 +89,7 @@ int run_demo(const DemoOptions& o) {
     progress("uwgrasp demo: detecting grasps on the " + s.scene.objects[i].name);
     runs.push_back(detect_object(s, f, i, o, seed));
   }
-  std::filesystem::create_directories(o.out);
+  make_output_dir(o.out);
   const auto path = [&](const std::string& n) { return (std::filesystem::path(o.out) / n).string(); };
   io::save_cloud(path("cloud.pcd"), f.cloud);
   io::write_text(path("truth.yaml"), io::truth_yaml(s.scene, truth_info(s, f.intrinsics, "rgbd", seed)));

@@ -70,6 +70,9 @@ void print_best(const grasp::Grasp& g, const grasp::Frames& f, const grasp::Scor
   print_vec("  rpy ", rpy_from_matrix(g.level_from_gripper.linear()) * (180.0 / std::numbers::pi), " deg\n");
   print_vec("  vehicle pose   position ", g.level_from_vehicle.translation(), " m");
   print_vec("  rpy ", g.vehicle_rpy * (180.0 / std::numbers::pi), " deg\n");
+  if (std::isfinite(g.hold_cost))
+    std::printf("  holding it takes %.1f %% of the thrusters' limit (q_v %.3f)\n", 100 * g.hold_cost,
+                g.scores.vehicle);
   std::printf("  scores         normal %.3f  orientation %.3f  contact left %.3f right %.3f  "
               "inliers %.3f\n", g.scores.normal, g.scores.orientation, g.scores.contact_left,
               g.scores.contact_right, g.scores.inliers);
@@ -94,13 +97,13 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
     std::printf("no feasible grasp\n");
   } else {
     print_best(r.grasps.front(), r.frames, cfg.grasp.score);
-    std::printf("  rank  score  normal orient  c_left c_right inliers  width m  vehicle r/p/y deg\n");
+    std::printf("  rank  score  normal orient  c_left c_right inliers  width m  vehicle r/p/y deg   hold %%\n");
     for (std::size_t i = 0; i < r.grasps.size(); ++i) {
       const auto& g = r.grasps[i];
-      std::printf("  %4zu  %5.3f  %6.3f %6.3f  %6.3f %6.3f  %6.3f  %7.4f  %6.1f %6.1f %6.1f\n", i + 1,
+      std::printf("  %4zu  %5.3f  %6.3f %6.3f  %6.3f %6.3f  %6.3f  %7.4f  %6.1f %6.1f %6.1f  %6.1f\n", i + 1,
                   g.scores.total, g.scores.normal, g.scores.orientation, g.scores.contact_left,
                   g.scores.contact_right, g.scores.inliers, g.width, deg(g.vehicle_rpy.x()),
-                  deg(g.vehicle_rpy.y()), deg(g.vehicle_rpy.z()));
+                  deg(g.vehicle_rpy.y()), deg(g.vehicle_rpy.z()), 100 * g.hold_cost);
     }
   }
   std::printf("stage times (ms):");

@@ -58,9 +58,8 @@ Cloud labelled_cloud(const Cloud& input, const segment::Scene& s) {
 
 void write_outputs(const SegmentOptions& o, const Cloud& input, const segment::Scene& s) {
   namespace fs = std::filesystem;
+  make_output_dir(o.out_dir);
   std::error_code ec;
-  fs::create_directories(o.out_dir, ec);
-  if (ec) throw Error(o.out_dir + ": cannot create output directory (" + ec.message() + ")");
   std::vector<std::string> written;
   try {
     for (std::size_t i = 0; i < s.segmentation.segments.size(); ++i) {

@@ -32,7 +32,7 @@ int run_simulate(const SimulateOptions& o) {
   if (o.sensor == "stereo")
     stereo = sim::render_stereo(world, s.world_from_camera, s.render, session.config.seed);
 
-  std::filesystem::create_directories(o.out);
+  make_output_dir(o.out);
   const auto path = [&](const char* name) { return (std::filesystem::path(o.out) / name).string(); };
   const int w = f.intrinsics.width, h = f.intrinsics.height;
   io::save_cloud(path("cloud.pcd"), f.cloud);

@@ -40,6 +40,13 @@ std::string preset_path(const std::string& file) {
   throw Error("preset " + file + " not found in " UWGRASP_SOURCE_CONFIG_DIR " or " UWGRASP_INSTALLED_CONFIG_DIR);
 }
 
+void make_output_dir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw Error(dir + ": cannot create output directory" + (ec ? " (" + ec.message() + ")" : ""));
+}
+
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }

@@ -33,6 +33,9 @@ Session open_session(const CommonOptions& opt);
 // A preset from config/: the source tree's when run from a build, else the installed copy.
 std::string preset_path(const std::string& file);
 
+// Creates DIR and its parents; throws Error (exit 2) when that fails, e.g. DIR is a file.
+void make_output_dir(const std::string& dir);
+
 // Milliseconds since t0.
 double ms_since(std::chrono::steady_clock::time_point t0);
 
@@ -43,6 +46,7 @@ void progress(const std::string& line);
 using Runner = std::function<int()>;
 void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_config_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
+void add_approach_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_demo_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_simulate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);

@@ -77,7 +77,7 @@ void write_header(std::ostringstream& md, const ExperimentPlan& plan, const std:
 
 void write_report(const std::string& dir, const std::vector<ConditionResult>& results,
                   const ExperimentPlan& plan, const std::string& command) {
-  std::filesystem::create_directories(dir);
+  make_output_dir(dir);
   std::ostringstream md;
   write_header(md, plan, command, results);
   write_overview(md, results);

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   add_detect_command(app, runners);
   add_simulate_command(app, runners);
   add_experiments_command(app, runners, argc, argv);
+  add_approach_command(app, runners);
   add_segment_command(app, runners);
   add_config_command(app, runners);
   try {

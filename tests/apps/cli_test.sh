@@ -118,6 +118,22 @@ if "$BIN" simulate --scene thesis --sensor stereo --water coastal --threads 1 --
 if "$BIN" demo --out "$T/demo" >"$T/demo.txt" 2>&1 && [[ -s $T/demo/grasps.json && -s $T/demo/grasps.png ]] &&
    [[ $(grep -cE '^  (barbell|ring|cross) ' "$T/demo.txt") -eq 3 ]]; then passes=$((passes + 1)); else
   echo "FAIL: demo: $(cat "$T/demo.txt")"; fails=$((fails + 1)); fi
+# Approach onto a demo grasp: bad input is named, a good run writes the trajectory and its plot.
+G=$T/demo/grasps.json
+printf '{"grasps": [{"vehicle_pose": {"position": [1, 0], "orientation_xyzw": [0, 0, 0, 1]}}]}' >"$T/short.json"
+expect 2 "missing.json" -- approach --grasps "$T/missing.json" --out "$T/out"
+expect 2 "not valid JSON" -- approach --grasps "$T/malformed.pcd" --out "$T/out"
+expect 2 "vehicle_pose.position" -- approach --grasps "$T/short.json" --out "$T/out"
+expect 2 "rank 99" -- approach --grasps "$G" --rank 99 --out "$T/out"
+expect 2 "no object named 'anchor'" -- approach --grasps "$G" --object anchor --out "$T/out"
+expect 2 "--current" -- approach --grasps "$G" --current 0.2,0 --out "$T/out"
+expect 2 "vehicle.mass" -- approach --grasps "$G" --set vehicle.mass=0 --out "$T/out"
+expect 2 "allocation matrix has rank" -- approach --grasps "$G" --set vehicle.thrusters.t5.direction=[1,0,0] --set vehicle.thrusters.t6.direction=[1,0,0] --set vehicle.thrusters.t7.direction=[1,0,0] --set vehicle.thrusters.t8.direction=[1,0,0] --out "$T/out"
+expect 2 "cannot create output directory" -- demo --out "$T/demo/grasps.json"
+if "$BIN" approach --grasps "$G" --object ring --current 0.1,0,0 --out "$T/ap" >"$T/ap.txt" 2>&1 &&
+   grep -q "reached: yes" "$T/ap.txt" && [[ -s $T/ap/approach.png && $(head -1 "$T/ap/approach.csv" | cut -d, -f1-2) == "t,phase" ]] &&
+   [[ $(wc -l <"$T/ap/approach.csv") -gt 100 ]]; then passes=$((passes + 1)); else
+  echo "FAIL: approach: $(cat "$T/ap.txt")"; fails=$((fails + 1)); fi
 # Experiments: bad options stop before anything is written; one short run writes the report.
 expect 2 "" -- experiments --iterations 0 --out "$T/out"
 expect 2 "" -- experiments --water muddy --out "$T/out"

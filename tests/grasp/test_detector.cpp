@@ -99,6 +99,46 @@ TEST(Detector, FullPipelineOnAScene) {
     EXPECT_GT(d.timer.ms(stage), 0.0) << stage;
 }
 
+// The whole vehicle: the seafloor plane and the scene reject candidates the object alone allows;
+// what is left passes the all-points check against the scene, and turning the check off gives
+// back exactly the candidates it rejected.
+TEST(Detector, WholeVehicleCheckUsesTheSceneAndTheSeafloor) {
+  const auto obj = fixtures::render_object(fixtures::Object::barbell, {}, 20000);
+  const Cloud scene = barbell_scene(obj);
+  segment::SegmentConfig seg;
+  seg.color.enabled = true;
+  GraspConfig cfg = for_view(obj.camera_pitch);
+  cfg.sampler.sigma_theta = Eigen::Vector3d::Constant(0.3);  // mostly level: the hull meets the floor
+  const Detection on = detect(scene, cloud::PreprocessConfig{}, seg, cfg, 1);
+  cfg.reach.enabled = false;
+  const Detection off = detect(scene, cloud::PreprocessConfig{}, seg, cfg, 1);
+  const auto count = [](const Detection& d, std::initializer_list<Reject> kinds) {
+    std::size_t n = 0;
+    for (Reject k : kinds) n += d.result.rejections[static_cast<std::size_t>(k)];
+    return n;
+  };
+  const std::size_t reach_rejected =
+      count(on, {Reject::hull_collision, Reject::scene_collision, Reject::approach_blocked});
+  EXPECT_GT(reach_rejected, 0u);
+  EXPECT_LT(on.result.feasible(), off.result.feasible());
+  // Scoring's own rejections come after the check: what reached scoring differs by exactly it.
+  const std::initializer_list<Reject> scored = {Reject::none, Reject::too_few_inliers,
+                                                Reject::not_antipodal, Reject::cannot_hold};
+  EXPECT_EQ(count(off, scored), count(on, scored) + reach_rejected);
+  ASSERT_TRUE(on.scene.pre.plane.found);
+  const Surroundings around{on.scene.pre.cloud.points, true, on.scene.pre.plane.coefficients};
+  const Obstacles o = make_obstacles(around, on.result.frames);
+  const Gripper g = make_gripper(cfg.gripper);
+  const std::vector<Solid> solids = vehicle_solids(g, on.result.frames, ReachConfig{});
+  const auto level = points_to_level(on.scene.pre.cloud.points, on.result.frames);
+  for (const Grasp& k : on.result.grasps) {
+    Candidate c;
+    c.position = k.level_from_gripper.translation().cast<float>();
+    c.rotation = k.level_from_gripper.linear().cast<float>();
+    EXPECT_EQ(reach_brute(level, o, solids, c, ReachConfig{}), Reject::none);
+  }
+}
+
 TEST(Detector, AutoPicksTheSamplerThatFindsGraspsOnTheRing) {
   const auto ring = fixtures::render_object(fixtures::Object::ring, {}, 20000);
   GraspConfig cfg = for_view(ring.camera_pitch);

@@ -13,9 +13,15 @@ namespace {
 
 using test::candidate;
 
+FrameConfig mount(double x, double z) {
+  FrameConfig fc;
+  fc.gripper.position = Eigen::Vector3d(x, 0.0, z);
+  return fc;
+}
+
 struct Rig {
   Gripper g = make_gripper(GripperConfig{});
-  Frames f = make_frames(FrameConfig{});  // gripper at (0.35, 0, 0.12) in B, no rotation
+  Frames f = make_frames(mount(0.35, 0.12));  // gripper at (0.35, 0, 0.12) in B, no rotation
   ReachConfig cfg;
   std::vector<Solid> solids = vehicle_solids(g, f, cfg);
   Candidate c = candidate(Eigen::Vector3f::Zero(), Eigen::Vector3f::UnitX(), Eigen::Vector3f::UnitY());

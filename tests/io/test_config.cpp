@@ -111,3 +111,37 @@ TEST(Config, ThesisPresetsReproduceTable85) {
 }
 
 }  // namespace uwgrasp::io
+
+namespace uwgrasp::io {
+
+// config/vehicle/bluerov2_heavy.yaml is the defaults' sourced twin: loading it changes nothing,
+// and its thrusters reproduce von Benzon's allocation matrix (tests/vehicle checks K itself).
+TEST(Config, VehicleFileIsTheDefaultVehicle) {
+  const Config c = load_config(std::string(UWGRASP_SOURCE_DIR) + "/config/vehicle/bluerov2_heavy.yaml");
+  EXPECT_EQ(to_yaml(c), to_yaml(Config{}));
+  ASSERT_EQ(c.vehicle.params.thrusters.size(), 8u);
+  const auto heavy = vehicle::heavy_thrusters();
+  for (std::size_t i = 0; i < 8; ++i) {
+    EXPECT_EQ(c.vehicle.params.thrusters[i].position, heavy[i].position) << "t" << i + 1;
+    EXPECT_EQ(c.vehicle.params.thrusters[i].direction, heavy[i].direction) << "t" << i + 1;
+  }
+}
+
+TEST(Config, VehicleErrorsNameTheField) {
+  const auto has = [](const std::string& e, const char* what) {
+    return e.find(what) != std::string::npos;
+  };
+  EXPECT_TRUE(has(error_of("vehicle:\n  mass: 0\n"), "vehicle.mass"));
+  EXPECT_TRUE(has(error_of("vehicle:\n  inertia: [0.2, -1, 0.3]\n"), "vehicle.inertia"));
+  EXPECT_TRUE(has(error_of("vehicle:\n  thrust:\n    min: 10\n"), "vehicle.thrust.min"));
+  EXPECT_TRUE(has(error_of("vehicle:\n  thrusters:\n    t9:\n      position: [0, 0, 0]\n"), "vehicle.thrusters.t9"));
+  EXPECT_TRUE(has(error_of("vehicle:\n  added_mass:\n    surge: -1\n"), "vehicle.added_mass.surge"));
+  EXPECT_TRUE(has(error_of("grasp:\n  reach:\n    hull_size: [0, 1, 1]\n"), "grasp.reach.hull_size"));
+  EXPECT_TRUE(has(error_of("vehicle:\n  control:\n    dt: 0\n"), "vehicle.control.dt"));
+  const Config c = parse_config("vehicle:\n  current: [0.2, 0, 0]\n  thrusters:\n    t3:\n      direction: [0, 1, 0]\n", "x");
+  EXPECT_EQ(c.vehicle.current, Eigen::Vector3d(0.2, 0, 0));
+  EXPECT_EQ(c.vehicle.params.thrusters[2].direction, Eigen::Vector3d(0, 1, 0));
+  EXPECT_EQ(c.vehicle.params.thrusters[0].direction, vehicle::heavy_thrusters()[0].direction);
+}
+
+}  // namespace uwgrasp::io

@@ -67,3 +67,33 @@ TEST(ValueColour, RunsFromDarkToBright) {
 }
 
 }  // namespace
+
+namespace {
+
+bool has_colour(const cv::Mat& img, cv::Rect r, cv::Vec3b c) {
+  for (int y = r.y; y < r.y + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x)
+      if (img.at<cv::Vec3b>(y, x) == c) return true;
+  return false;
+}
+
+TEST(LinePlot, LinesRunWhereTheDataLies) {
+  // y = x on [0, 1] with the y range fixed to [0, 1]: the line goes from the plot area's
+  // bottom-left corner (80, 420) to its top-right (560, 60), and nowhere near the other corners.
+  const uwgrasp::viz::Series s{"y=x", {0.0, 1.0}, {0.0, 1.0}};
+  uwgrasp::viz::Axes a;
+  a.y_lo = 0, a.y_hi = 1;
+  const cv::Mat img = uwgrasp::viz::line_plot(std::span(&s, 1), a);
+  const cv::Vec3b blue(180, 119, 31);  // the first series' colour
+  EXPECT_TRUE(has_colour(img, {318, 238, 5, 5}, blue));   // the middle, (320, 240)
+  EXPECT_TRUE(has_colour(img, {82, 412, 6, 6}, blue));    // near the start
+  EXPECT_FALSE(has_colour(img, {82, 62, 40, 40}, blue));  // top-left stays empty
+  EXPECT_FALSE(has_colour(img, {515, 375, 40, 40}, blue));  // bottom-right too
+}
+
+TEST(LinePlot, MismatchedSeriesIsAnError) {
+  const uwgrasp::viz::Series s{"bad", {0.0, 1.0}, {0.0}};
+  EXPECT_THROW(uwgrasp::viz::line_plot(std::span(&s, 1), {}), uwgrasp::Error);
+}
+
+}  // namespace

@@ -16,9 +16,11 @@ struct FrameConfig {
   // The camera's forward-looking frame (x along the optical axis, like B) in B; all zero is a
   // camera looking straight ahead. Defaults: the BlueROV2's camera behind the front dome.
   Mount camera{Eigen::Vector3d(0.20, 0.0, 0.0), Eigen::Vector3d::Zero()};
-  // T_BG: the gripper frame in B. Default: below the bow, approach along body x, fingers closing
-  // along body y, so the vehicle's roll/pitch/yaw equal the gripper's (the thesis's assumption).
-  Mount gripper{Eigen::Vector3d(0.35, 0.0, 0.12), Eigen::Vector3d::Zero()};
+  // T_BG: the gripper frame in B. Default: a gripper under the bottom panel whose closing region
+  // sits 17 cm forward of the hull's front face (0.2285 m) and 4.3 cm below its bottom
+  // (0.127 m) - measure yours. Approach along body x, fingers closing along body y, so the
+  // vehicle's roll/pitch/yaw equal the gripper's (the thesis's assumption).
+  Mount gripper{Eigen::Vector3d(0.40, 0.0, 0.17), Eigen::Vector3d::Zero()};
   double capture_roll = 0.0;   // vehicle attitude when the cloud was captured (IMU), rad
   double capture_pitch = 0.0;
 };

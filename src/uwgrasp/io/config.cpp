@@ -11,6 +11,7 @@
 
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/config_schema.hpp"
+#include "uwgrasp/vehicle/thrusters.hpp"
 
 namespace uwgrasp::io {
 
@@ -250,6 +251,8 @@ void apply_overrides(Config& cfg, const std::vector<std::string>& overrides) {
     node[part] = parse_yaml(value, "--set " + path);
     read_into(cfg, root, "--set");
   }
+  // The vehicle prices each grasp's attitude (q_v, cannot_hold); rebuilt whenever it may change.
+  cfg.grasp.score.hold_cost = vehicle::hold_cost_function(cfg.vehicle.params, cfg.vehicle.current);
 }
 
 Config parse_config(const std::string& yaml, const std::string& source,

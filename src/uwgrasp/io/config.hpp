@@ -11,6 +11,8 @@
 #include "uwgrasp/segment/pipeline.hpp"
 #include "uwgrasp/sim/camera.hpp"
 #include "uwgrasp/sim/water.hpp"
+#include "uwgrasp/vehicle/control.hpp"
+#include "uwgrasp/vehicle/model.hpp"
 
 namespace uwgrasp::io {
 
@@ -22,6 +24,14 @@ struct SimConfig {
   sim::NoiseConfig noise;
 };
 
+// The vehicle that carries the gripper (hold cost, approach simulation). Defaults: the BlueROV2
+// Heavy of config/vehicle/bluerov2_heavy.yaml, whose comments cite every value.
+struct VehicleConfig {
+  vehicle::VehicleParams params{.thrusters = vehicle::heavy_thrusters()};  // always eight
+  Eigen::Vector3d current = Eigen::Vector3d::Zero();  // constant ocean current in L, m/s
+  vehicle::ControlConfig control;
+};
+
 struct Config {
   std::uint64_t seed = 1;      // every random choice derives from it
   std::uint32_t threads = 0;   // 0: all cores
@@ -29,6 +39,7 @@ struct Config {
   segment::SegmentConfig segment;
   grasp::GraspConfig grasp;
   SimConfig sim;
+  VehicleConfig vehicle;
 };
 
 // Throws Error naming the file (or "--set") and the dotted key for an unknown key, a value of
@@ -36,7 +47,8 @@ struct Config {
 Config load_config(const std::string& path, const std::vector<std::string>& overrides = {});
 Config parse_config(const std::string& yaml, const std::string& source,
                     const std::vector<std::string>& overrides = {});
-// Applies "a.b.c=value" overrides to an existing config.
+// Applies "a.b.c=value" overrides to an existing config, then binds the vehicle's hold cost to
+// grasp.score.hold_cost (throws Error when the thrusters cannot produce every wrench).
 void apply_overrides(Config& cfg, const std::vector<std::string>& overrides);
 
 std::string to_yaml(const Config& cfg);

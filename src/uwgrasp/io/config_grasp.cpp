@@ -56,6 +56,7 @@ void visit_score(Visitor& v, grasp::ScoreConfig& s) {
     v.field("orientation", s.weights.orientation, 0.0, 1e6);
     v.field("contact", s.weights.contact, 0.0, 1e6);
     v.field("inliers", s.weights.inliers, 0.0, 1e6);
+    v.field("vehicle", s.weights.vehicle, 0.0, 1e6);
   });
   v.section("orientation", [&] {
     using F = grasp::OrientationForm;
@@ -89,6 +90,14 @@ void visit_grasp(Visitor& v, grasp::GraspConfig& c) {
     v.field("tolerance", c.occlusion.tolerance, 0.0, 1.0);
     v.field("resolution", c.occlusion.resolution, 1e-4, 0.1);
     v.field("spacing", c.occlusion.spacing, 1e-3, 1.0);
+  });
+  v.section("reach", [&] {
+    v.field("enabled", c.reach.enabled);
+    v.field("hull_size", c.reach.hull_size, kTiny, 100.0);
+    v.field("hull_centre", c.reach.hull_centre, -100.0, 100.0);
+    v.field("standoff", c.reach.standoff, 0.0, 100.0);
+    v.field("margin", c.reach.margin, 0.0, 10.0);
+    v.field("floor_tolerance", c.reach.floor_tolerance, 0.0, 10.0);
   });
   v.section("score", [&] { visit_score(v, c.score); });
 }

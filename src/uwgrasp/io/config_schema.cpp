@@ -78,6 +78,7 @@ void visit(Visitor& v, Config& c) {
   v.section("segment", [&] { visit_segment(v, c.segment); });
   v.section("grasp", [&] { visit_grasp(v, c.grasp); });
   v.section("sim", [&] { visit_sim(v, c.sim); });
+  v.section("vehicle", [&] { visit_vehicle(v, c.vehicle); });
 }
 
 }  // namespace uwgrasp::io

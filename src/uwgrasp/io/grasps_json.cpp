@@ -38,13 +38,13 @@ json grasp_json(const grasp::Grasp& g, const grasp::Frames& f, std::size_t rank)
                  {"contact_left", g.scores.contact_left},
                  {"contact_right", g.scores.contact_right},
                  {"inliers", g.scores.inliers},
-                 {"vehicle", nullptr}};
+                 {"vehicle", std::isfinite(g.hold_cost) ? json(g.scores.vehicle) : json(nullptr)}};
   j["inliers"] = g.inliers;
   j["width"] = g.width;
   j["contacts"] = {vec(T_CL * g.contacts[0]), vec(T_CL * g.contacts[1])};
   j["vehicle_pose"] = pose_json(g.level_from_vehicle);
   j["vehicle_pose"]["frame"] = "level";
-  j["hold_cost"] = nullptr;
+  j["hold_cost"] = number_or_null(g.hold_cost);
   j["level"] = pose_json(g.level_from_gripper);
   j["antipodal"] = g.friction.ok;
   j["mu_required"] = number_or_null(g.friction.mu_required);
@@ -58,7 +58,7 @@ json timing_json(const StageTimer& t) {
   return {{"preprocess", pre},
           {"segment", t.ms("segment") + t.ms("select")},
           {"sample", t.ms("sample")},
-          {"check", t.ms("check") + t.ms("occlusion")},
+          {"check", t.ms("check") + t.ms("occlusion") + t.ms("reach")},
           {"score", t.ms("score")},
           {"total", t.total_ms()}};
 }

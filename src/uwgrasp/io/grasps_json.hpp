@@ -9,12 +9,28 @@
 namespace uwgrasp::io {
 
 // Poses are in the camera optical frame ("frame"); each grasp also carries its level-frame pose
-// ("level") and the vehicle pose T_LB in the level frame. Fields the engine does not compute yet
-// (the vehicle score and hold cost) are null.
+// ("level") and the vehicle pose T_LB in the level frame. The vehicle score q_v and hold_cost
+// (thruster utilisation of holding that pose's attitude) are null when no vehicle model priced
+// the grasp (grasp.score.hold_cost empty).
 nlohmann::json grasps_to_json(const grasp::Detection& d, const Config& cfg,
                               const std::string& input, const std::string& version);
 
 // Writes the JSON atomically (no partial file), two-space indented, newline-terminated.
 void write_json(const std::string& path, const nlohmann::json& j);
+
+// One grasp read back from a grasps.json (`detect`'s, or `demo`'s with one entry per object).
+struct GraspRecord {
+  std::string object;   // the demo object's name, or "" for a detect file
+  std::size_t rank = 1;
+  Pose level_from_vehicle = Pose::Identity();  // T_LB the vehicle must reach
+  Pose level_from_gripper = Pose::Identity();  // T_LG, whose x is the approach axis
+  double score = 0;
+  Config config;        // the detection's effective config, with `sets` applied
+};
+// Throws Error naming the file and field for a missing or malformed file, an unknown object, a
+// rank beyond the grasps in the file, or a pose that is not finite. `object` empty: the first
+// object of a demo file.
+GraspRecord read_grasp(const std::string& path, std::size_t rank, const std::string& object,
+                       const std::vector<std::string>& sets = {});
 
 }  // namespace uwgrasp::io

@@ -74,6 +74,7 @@ ApproachResult simulate_approach(const VehicleParams& p, const VehicleParams& pl
   Controller k = make_controller(p, c);
   const Plan path = plan(c, task);
   ApproachResult out;
+  out.standoff_time = path.transit.duration;
   out.arrival_time = path.arrival();
   State s = task.start;
   bool saturated = false;

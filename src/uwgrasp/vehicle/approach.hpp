@@ -30,6 +30,7 @@ struct Sample {
 struct ApproachResult {
   std::vector<Sample> trajectory;  // every `record_every` steps, and the last
   bool reached = false;            // within tolerance of the grasp for hold_time, by max_time
+  double standoff_time = 0;        // when the reference reached the standoff, s
   double arrival_time = 0;         // when the reference reached the grasp pose, s
   double settle_time = -1;         // from the start until within tolerance for good; -1: never
   double final_position_error = 0, final_attitude_error = 0;

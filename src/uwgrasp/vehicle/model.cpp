@@ -44,8 +44,9 @@ State advance(const State& s, const Derivative& d, double dt) {
 
 std::vector<Thruster> heavy_thrusters() {
   // Von Benzon's K fixes |x| + |y| = 0.267 m for the horizontal thrusters; the split follows the
-  // Gazebo model's 0.14 : 0.092 (bluerov2_heavy.yaml). Vertical ones thrust upwards (-z).
-  const double hx = 0.267 * 0.14 / 0.232, hy = 0.267 * 0.092 / 0.232, c = std::sqrt(0.5);
+  // Gazebo model's 0.14 : 0.092 (bluerov2_heavy.yaml), to the millimetre. Vertical ones thrust
+  // upwards (-z).
+  const double hx = 0.161, hy = 0.106, c = std::sqrt(0.5);
   return {
       {{hx, hy, 0}, {c, -c, 0}},    {{hx, -hy, 0}, {c, c, 0}},
       {{-hx, hy, 0}, {-c, -c, 0}},  {{-hx, -hy, 0}, {-c, c, 0}},

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <memory>
 #include <string>
 
 #include "uwgrasp/core/error.hpp"
@@ -64,6 +65,15 @@ HoldCost hold_cost(const VehicleParams& p, const Allocator& a, const Eigen::Vect
   h.wrench = hold_wrench(p, rpy, current);
   h.allocation = allocate(a, h.wrench);
   return h;
+}
+
+std::function<double(const Eigen::Vector3d& rpy)> hold_cost_function(
+    const VehicleParams& p, const Eigen::Vector3d& current) {
+  if (!current.allFinite()) throw Error("vehicle.current must be finite");
+  auto a = std::make_shared<const Allocator>(make_allocator(p));
+  return [p, a, current](const Eigen::Vector3d& rpy) {
+    return hold_cost(p, *a, rpy, current).utilisation();
+  };
 }
 
 }  // namespace uwgrasp::vehicle

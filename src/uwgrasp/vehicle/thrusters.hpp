@@ -3,6 +3,7 @@
 // thruster at r_i thrusting along d_i, and the hold cost of an attitude (thesis 6.3 motivates
 // q_o with restoring forces; this is what they actually cost the thrusters).
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "uwgrasp/vehicle/model.hpp"
@@ -53,5 +54,11 @@ struct HoldCost {
 };
 HoldCost hold_cost(const VehicleParams& p, const Allocator& a, const Eigen::Vector3d& rpy,
                    const Eigen::Vector3d& current = Eigen::Vector3d::Zero());
+
+// The utilisation of holding an attitude (roll, pitch, yaw) in a constant current, as a
+// thread-safe function - what grasp::ScoreConfig::hold_cost expects. Throws Error as
+// make_allocator does.
+std::function<double(const Eigen::Vector3d& rpy)> hold_cost_function(
+    const VehicleParams& p, const Eigen::Vector3d& current = Eigen::Vector3d::Zero());
 
 }  // namespace uwgrasp::vehicle

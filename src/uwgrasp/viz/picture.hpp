@@ -47,6 +47,21 @@ cv::Mat draw(const Cloud& cloud, std::span<const Wire> wires, const Picture& pic
 cv::Mat histogram(std::span<const double> values, int bins, double lo, double hi,
                   const std::string& title, const std::string& xlabel);
 
+// Lines of y over x in one 720 x 480 plot, each in its own colour with its name in the legend.
+struct Series {
+  std::string name;
+  std::vector<double> x, y;  // same length; non-finite points break the line
+};
+struct Axes {
+  std::string title, xlabel, ylabel;
+  double y_lo = 0, y_hi = 0;     // y range; equal: the data's range
+  std::vector<double> y_marks;   // dashed horizontal lines (limits, tolerances)
+  std::vector<double> x_marks;   // dashed vertical lines (events)
+  bool include_zero = true;      // the automatic y range reaches 0
+};
+// Throws Error when a series' x and y differ in length.
+cv::Mat line_plot(std::span<const Series> series, const Axes& axes);
+
 // Tiles of one size and type laid out row by row, `columns` per row, blank (white) where the
 // last row is short. Throws Error when the tiles differ in size or type.
 cv::Mat grid(std::span<const cv::Mat> tiles, int columns);
