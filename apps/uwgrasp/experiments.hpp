@@ -63,6 +63,16 @@ struct CheckStudy {
   std::vector<CheckRun> runs;
 };
 
+// The vehicle on a top grasp (not in the thesis; its 9.3 future work): the whole-vehicle check
+// against the scene, the hold cost, and the approach in still water and in a head current.
+struct VehicleRun {
+  grasp::Reject reach = grasp::Reject::none;
+  double hold = 0;                 // thruster utilisation of holding the attitude
+  bool reached[2] = {false, false};  // still water, head current
+  double settle[2] = {-1, -1}, peak[2] = {0, 0};
+};
+inline constexpr double kHeadCurrent = 0.2;  // m/s, flowing from ahead (-x in L)
+
 // Figures 8.13-8.16: the best grasp of each iteration on one object, with its preset.
 struct FinalObject {
   std::string name;
@@ -71,6 +81,7 @@ struct FinalObject {
   std::vector<grasp::Grasp> best;  // one per iteration that found a feasible grasp
   std::vector<double> feasible, detect_ms;
   std::vector<double> coverage;    // object points / the object's visible pixels (truth labels)
+  std::vector<VehicleRun> vehicle; // per best grasp
   std::size_t failures = 0;        // iterations where detection stopped with an error
   std::vector<std::string> errors; // their distinct messages
   Cloud view;                      // the first iteration's frame, for the figure
@@ -94,6 +105,9 @@ SegmentStudy run_segmentation_study(const ExperimentPlan& plan, const Condition&
 CheckStudy run_check_study(const ExperimentPlan& plan, const Condition& c);
 // Tables 8.3 and 8.5, figures 8.13-8.16 (they share the rendered frames).
 void run_sampling_study(const ExperimentPlan& plan, const Condition& c, ConditionResult& out);
+
+// The vehicle on a detection's top grasp (thesis presets run without the whole-vehicle check).
+VehicleRun run_vehicle(const grasp::Detection& d, const grasp::Grasp& g, const io::Config& cfg);
 
 // DIR/report.md and its PNGs; `command` is the command line that made them.
 void write_report(const std::string& dir, const std::vector<ConditionResult>& results,

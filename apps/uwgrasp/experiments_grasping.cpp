@@ -53,7 +53,9 @@ void detect_once(const Simulation& s, const sim::Frame& f, std::size_t o, const 
                  std::uint64_t seed, ConditionResult& out) {
   FinalObject& fo = out.finals[o];
   try {
-    const io::Config oc = object_config(s, f, o, plan.sets, seed);
+    const io::Config preset = object_config(s, f, o, plan.sets, seed);
+    io::Config oc = preset;
+    oc.grasp.reach.enabled = false;  // the thesis checked the gripper against the object only
     const auto t0 = std::chrono::steady_clock::now();
     const grasp::Detection d = grasp::detect(f.cloud, oc.preprocess, oc.segment, oc.grasp, seed);
     fo.detect_ms.push_back(ms_since(t0));
@@ -61,7 +63,10 @@ void detect_once(const Simulation& s, const sim::Frame& f, std::size_t o, const 
     const auto label = static_cast<std::uint16_t>(sim::kLabelFirstObject + o);
     const auto visible = std::count(f.labels.begin(), f.labels.end(), label);
     fo.coverage.push_back(double(d.object.size()) / double(std::max<std::ptrdiff_t>(visible, 1)));
-    if (!d.result.grasps.empty()) fo.best.push_back(d.result.grasps.front());
+    if (!d.result.grasps.empty()) {
+      fo.best.push_back(d.result.grasps.front());
+      fo.vehicle.push_back(run_vehicle(d, d.result.grasps.front(), preset));
+    }
     if (fo.view.empty()) {
       fo.cfg = oc;
       fo.frames = d.result.frames;

@@ -81,6 +81,7 @@ void write_report(const std::string& dir, const std::vector<ConditionResult>& re
   std::ostringstream md;
   write_header(md, plan, command, results);
   write_overview(md, results);
+  write_vehicle_model(md, plan.base, dir);
   for (const auto& r : results) {
     md << "## " << r.condition.name << " water" << (r.condition.noise ? ", realistic sensor" : ", perfect sensor")
        << "\n\n";
@@ -89,6 +90,7 @@ void write_report(const std::string& dir, const std::vector<ConditionResult>& re
     write_checking(md, r);
     write_weights(md, r);
     write_figures(md, r, dir);
+    write_vehicle_runs(md, r);
   }
   io::write_text((std::filesystem::path(dir) / "report.md").string(), md.str());
 }

@@ -141,6 +141,7 @@ expect 2 "preprocess.voxl" -- experiments --set preprocess.voxl.leaf=1 --out "$T
 expect 0 "" -- experiments --help
 if "$BIN" experiments --iterations 1 --water clear --out "$T/exp" >/dev/null 2>"$T/exp.txt" &&
    grep -q "Table 8.4" "$T/exp/report.md" && grep -q "iteration 1/1" "$T/exp.txt" &&
+   grep -q "whole vehicle fits" "$T/exp/report.md" && [[ -s $T/exp/vehicle_qo_qv.png ]] &&
    [[ $(ls "$T/exp"/clear_fig8.1[3-6]_*.png | wc -l) -eq 4 ]]; then passes=$((passes + 1)); else
   echo "FAIL: experiments: $(tail -3 "$T/exp.txt")"; fails=$((fails + 1)); fi
 # config/default.yaml is what `uwgrasp config` prints, plus comments.
