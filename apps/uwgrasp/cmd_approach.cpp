@@ -104,7 +104,9 @@ void print_result(const vehicle::ApproachResult& r, const io::GraspRecord& g, co
               g.config.grasp.reach.standoff);
   std::printf("reached: %s\n", r.reached ? "yes" : "NO");
   if (r.settle_time >= 0)
-    std::printf("settle time %.1f s (the reference arrived at %.1f s)\n", r.settle_time, r.arrival_time);
+    std::printf("settled at %.1f s: within %.0f mm and %.1f deg from then on (the reference arrived at %.1f s)\n",
+                r.settle_time, 1000 * g.config.vehicle.control.position_tolerance,
+                g.config.vehicle.control.attitude_tolerance * kDeg, r.arrival_time);
   else
     std::printf("not settled within %.0f s (the reference arrived at %.1f s)\n",
                 g.config.vehicle.control.max_time, r.arrival_time);
