@@ -130,6 +130,7 @@ expect 2 "--current" -- approach --grasps "$G" --current 0.2,0 --out "$T/out"
 expect 2 "vehicle.mass" -- approach --grasps "$G" --set vehicle.mass=0 --out "$T/out"
 expect 2 "allocation matrix has rank" -- approach --grasps "$G" --set vehicle.thrusters.t5.direction=[1,0,0] --set vehicle.thrusters.t6.direction=[1,0,0] --set vehicle.thrusters.t7.direction=[1,0,0] --set vehicle.thrusters.t8.direction=[1,0,0] --out "$T/out"
 expect 2 "cannot create output directory" -- demo --out "$T/demo/grasps.json"
+expect 2 "inside the hull" -- demo --set "grasp.frames.gripper.position=[0.1,0,0]" --out "$T/out"
 if "$BIN" approach --grasps "$G" --object ring --current 0.1,0,0 --out "$T/ap" >"$T/ap.txt" 2>&1 &&
    grep -q "reached: yes" "$T/ap.txt" && [[ -s $T/ap/approach.png && $(head -1 "$T/ap/approach.csv" | cut -d, -f1-2) == "t,phase" ]] &&
    [[ $(wc -l <"$T/ap/approach.csv") -gt 100 ]]; then passes=$((passes + 1)); else

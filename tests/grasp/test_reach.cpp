@@ -138,6 +138,9 @@ TEST(Reach, BadConfigIsAnError) {
   s.cfg = ReachConfig{};
   s.cfg.standoff = -0.1;
   EXPECT_THROW(vehicle_solids(s.g, s.f, s.cfg), Error);
+  s.cfg = ReachConfig{};
+  EXPECT_THROW(vehicle_solids(s.g, make_frames(mount(0.1, 0.05)), s.cfg), Error);  // inside
+  EXPECT_NO_THROW(vehicle_solids(s.g, make_frames(mount(0.1, 0.2)), s.cfg));     // below it
 }
 
 }  // namespace

@@ -98,6 +98,11 @@ std::vector<Solid> vehicle_solids(const Gripper& g, const Frames& f, const Reach
   if (!(cfg.standoff >= 0.0) || !(cfg.margin >= 0.0) || !(cfg.floor_tolerance >= 0.0))
     throw Error("grasp.reach: standoff, margin and floor_tolerance must be >= 0");
   const Pose gripper_from_body = f.body_from_gripper.inverse();
+  // The closing region's centre in the hull's own frame: inside it, nothing could be grasped.
+  const Eigen::Vector3d centre_in_hull = f.body_from_gripper.translation() - cfg.hull_centre;
+  if ((centre_in_hull.cwiseAbs().array() < 0.5 * cfg.hull_size.array()).all())
+    throw Error("grasp.frames.gripper puts the gripper inside the hull (grasp.reach.hull_size, "
+                "hull_centre): mount it outside the hull, or turn grasp.reach off");
   std::vector<Solid> out;
   Solid hull;
   hull.centre = (gripper_from_body * cfg.hull_centre).cast<float>();

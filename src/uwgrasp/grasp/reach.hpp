@@ -41,7 +41,8 @@ struct Solid {
 };
 
 // The hull (from B through T_BG^-1, grown by the margin) first, then the gripper's solid parts.
-// Throws Error for a non-positive hull size or a negative standoff, margin or tolerance.
+// Throws Error for a non-positive hull size, a negative standoff, margin or tolerance, or a
+// gripper mounted inside the hull.
 std::vector<Solid> vehicle_solids(const Gripper& g, const Frames& f, const ReachConfig& cfg);
 
 // The scene in L, ready for many checks: points under a hierarchy, and the plane oriented so the
