@@ -81,6 +81,10 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
   remap_filtered(out.output_of_input, f.indices, in.size());
   Cloud cur = std::move(f.cloud);
   out.counts.finite = cur.size();
+  if (cfg.water.enabled) {
+    timer.start("color");
+    restore_colors(cur, cfg.water);
+  }
   if (cfg.range.enabled) {
     timer.start("range");
     apply(crop_range(cur, cfg.range), cur, out.output_of_input);

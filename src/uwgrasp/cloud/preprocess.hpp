@@ -1,11 +1,13 @@
 #pragma once
 // The thesis's chapter-4 preprocessing chain as one thin composition of the cloud/ stages:
-// invalid values -> range crop -> voxel grid -> plane removal -> outliers -> normals.
+// invalid values -> (colour restoration) -> range crop -> voxel grid -> plane removal ->
+// outliers -> normals.
 // Outliers come after the plane: RANSAC is robust to them by design (4.1.4), and the statistics
 // then describe the points that matter, at a fraction of the cost of a kNN over the seafloor.
 #include <cstdint>
 #include <vector>
 
+#include "uwgrasp/cloud/color.hpp"
 #include "uwgrasp/cloud/filters.hpp"
 #include "uwgrasp/cloud/normals.hpp"
 #include "uwgrasp/cloud/outliers.hpp"
@@ -16,6 +18,7 @@
 namespace uwgrasp::cloud {
 
 struct PreprocessConfig {
+  WaterColorConfig water;  // colour restoration, first after invalid values (off by default)
   RangeConfig range;
   OutlierConfig outliers;
   VoxelConfig voxel;

@@ -9,6 +9,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kTiny = 1e-9;  // lower bound of strictly positive quantities
 
 void visit_preprocess(Visitor& v, cloud::PreprocessConfig& c) {
+  v.section("water", [&] {
+    v.field("enabled", c.water.enabled);
+    v.field("attenuation", c.water.attenuation, 0.0, 100.0);
+    v.field("veiling", c.water.veiling, 0.0, 1.0);
+    v.field("min_transmission", c.water.min_transmission, 1e-6, 1.0);
+  });
   v.section("range", [&] {
     v.field("enabled", c.range.enabled);
     v.field("min", c.range.min, 0.0, 1000.0);
