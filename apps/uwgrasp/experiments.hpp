@@ -12,10 +12,14 @@
 namespace uwgrasp::app {
 
 struct Condition {
-  std::string name;   // as the report names it
+  std::string name;   // as the report and file names name it
   std::string water;  // sim water preset
   bool noise = false; // depth noise, dropouts and marine snow
+  std::vector<std::string> sets;  // settings on top of every preset (empty: the thesis's)
 };
+// The settings that suit a realistic sensor in `water`: colour restoration with the water's
+// coefficients, wider normals, and region growing that tolerates the noise.
+std::vector<std::string> adapted_settings(const std::string& water);
 
 struct ExperimentPlan {
   io::Config base;                 // the session's config (seed, threads, sim.camera)

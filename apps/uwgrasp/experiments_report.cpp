@@ -83,8 +83,14 @@ void write_report(const std::string& dir, const std::vector<ConditionResult>& re
   write_overview(md, results);
   write_vehicle_model(md, plan.base, dir);
   for (const auto& r : results) {
-    md << "## " << r.condition.name << " water" << (r.condition.noise ? ", realistic sensor" : ", perfect sensor")
-       << "\n\n";
+    const Condition& c = r.condition;
+    md << "## " << c.name << ": " << c.water << " water, " << (c.noise ? "realistic sensor" : "perfect sensor")
+       << (c.sets.empty() ? ", the thesis's settings" : ", adapted settings") << "\n\n";
+    if (!c.sets.empty()) {
+      md << "On top of every preset:";
+      for (const auto& s : c.sets) md << " `" << s << "`";
+      md << "\n\n";
+    }
     write_segmentation(md, r);
     write_sampling(md, r);
     write_checking(md, r);
