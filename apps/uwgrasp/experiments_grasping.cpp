@@ -6,6 +6,7 @@
 
 #include "common.hpp"
 #include "experiments.hpp"
+#include "uwgrasp/cloud/color.hpp"
 #include "uwgrasp/core/error.hpp"
 
 namespace uwgrasp::app {
@@ -71,6 +72,8 @@ void detect_once(const Simulation& s, const sim::Frame& f, std::size_t o, const 
       fo.cfg = oc;
       fo.frames = d.result.frames;
       fo.view = f.cloud;
+      // With colour restoration on, draw what the pipeline saw: the object in its own colours.
+      if (oc.preprocess.water.enabled) cloud::restore_colors(fo.view, oc.preprocess.water);
       fo.focus = d.object.points;
     }
     sample_rows(d, oc, seed, out.sampling, o * std::size(kSamplers));
