@@ -60,6 +60,7 @@ struct Query {
   const Solid& solid;
   const Candidate& c;
   float s;
+  Eigen::Matrix3f Rt;      // L to the candidate's gripper frame
   Eigen::Vector3f lo, hi;  // the swept solid's bounds in L
 
   // The worst hit under node i: at_grasp ends the search.
@@ -74,7 +75,6 @@ struct Query {
       return std::max(a, walk(n.right));
     }
     Hit worst = Hit::none;
-    const Eigen::Matrix3f Rt = c.rotation.transpose();
     for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
       worst = std::max(worst, segment_hit(solid, Rt * (bvh.points[k] - c.position), s));
       if (worst == Hit::at_grasp) break;
@@ -83,12 +83,17 @@ struct Query {
   }
 };
 
-Reject verdict(const std::vector<Hit>& hits, std::span<const Solid> solids) {
-  for (std::size_t k = 0; k < hits.size(); ++k)
-    if (hits[k] == Hit::at_grasp) return solids[k].at_grasp;
-  for (const Hit h : hits)
-    if (h == Hit::on_approach) return Reject::approach_blocked;
-  return Reject::none;
+// The solids are judged in order: the first hit at the grasp pose names the reason; hits only on
+// the way in make the candidate approach_blocked. `hit(k)` is solid k's worst hit.
+template <class HitOf>
+Reject verdict(std::span<const Solid> solids, HitOf hit) {
+  bool blocked = false;
+  for (std::size_t k = 0; k < solids.size(); ++k) {
+    const Hit h = hit(k);
+    if (h == Hit::at_grasp) return solids[k].at_grasp;
+    blocked = blocked || h == Hit::on_approach;
+  }
+  return blocked ? Reject::approach_blocked : Reject::none;
 }
 }  // namespace
 
@@ -137,32 +142,27 @@ Obstacles make_obstacles(const Surroundings& s, const Frames& f) {
 Reject reach_check(const Obstacles& o, std::span<const Solid> solids, const Candidate& c,
                    const ReachConfig& cfg) {
   const float s = static_cast<float>(cfg.standoff);
-  std::vector<Hit> hits(solids.size(), Hit::none);
-  for (std::size_t k = 0; k < solids.size(); ++k) {
-    hits[k] = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
-    if (hits[k] == Hit::at_grasp) return solids[k].at_grasp;
-    if (o.bvh.nodes.empty()) continue;
-    Query q{o.bvh, solids[k], c, s, Eigen::Vector3f::Constant(std::numeric_limits<float>::max()),
+  return verdict(solids, [&](std::size_t k) {
+    const Hit plane = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
+    if (plane == Hit::at_grasp || o.bvh.nodes.empty()) return plane;
+    Query q{o.bvh, solids[k], c, s, c.rotation.transpose(),
+            Eigen::Vector3f::Constant(std::numeric_limits<float>::max()),
             Eigen::Vector3f::Constant(std::numeric_limits<float>::lowest())};
     for (float t : {0.0f, s})
       for (const auto& p : corners(solids[k], c, t)) q.lo = q.lo.cwiseMin(p), q.hi = q.hi.cwiseMax(p);
-    hits[k] = std::max(hits[k], q.walk(0));
-    if (hits[k] == Hit::at_grasp) return solids[k].at_grasp;
-  }
-  return verdict(hits, solids);
+    return std::max(plane, q.walk(0));
+  });
 }
 
 Reject reach_brute(std::span<const Eigen::Vector3f> level_points, const Obstacles& o,
                    std::span<const Solid> solids, const Candidate& c, const ReachConfig& cfg) {
   const float s = static_cast<float>(cfg.standoff);
-  std::vector<Hit> hits(solids.size(), Hit::none);
   const Eigen::Matrix3f Rt = c.rotation.transpose();
-  for (std::size_t k = 0; k < solids.size(); ++k) {
-    hits[k] = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
-    for (const auto& p : level_points)
-      hits[k] = std::max(hits[k], segment_hit(solids[k], Rt * (p - c.position), s));
-  }
-  return verdict(hits, solids);
+  return verdict(solids, [&](std::size_t k) {
+    Hit worst = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
+    for (const auto& p : level_points) worst = std::max(worst, segment_hit(solids[k], Rt * (p - c.position), s));
+    return worst;
+  });
 }
 
 }  // namespace uwgrasp::grasp
