@@ -126,8 +126,7 @@ TEST(Detector, WholeVehicleCheckUsesTheSceneAndTheSeafloor) {
                                                 Reject::not_antipodal, Reject::cannot_hold};
   EXPECT_EQ(count(off, scored), count(on, scored) + reach_rejected);
   ASSERT_TRUE(on.scene.pre.plane.found);
-  const Surroundings around{on.scene.pre.cloud.points, true, on.scene.pre.plane.coefficients};
-  const Obstacles o = make_obstacles(around, on.result.frames);
+  const Obstacles o = make_obstacles(surroundings(on.scene), on.result.frames);
   const Gripper g = make_gripper(cfg.gripper);
   const std::vector<Solid> solids = vehicle_solids(g, on.result.frames, ReachConfig{});
   const auto level = points_to_level(on.scene.pre.cloud.points, on.result.frames);

@@ -174,6 +174,10 @@ Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cf
   return select(scene.pre.cloud, points);
 }
 
+Surroundings surroundings(const segment::Scene& scene) {
+  return {scene.pre.cloud.points, scene.pre.plane.found, scene.pre.plane.coefficients};
+}
+
 Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
                  const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed) {
   Detection d;
@@ -183,8 +187,7 @@ Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   d.object = object_points(d.scene, seg.object, d.segment);
   d.timer.stop();
   const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;
-  const Surroundings around{d.scene.pre.cloud.points, d.scene.pre.plane.found,
-                            d.scene.pre.plane.coefficients};
+  const Surroundings around = surroundings(d.scene);
   d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);
   return d;
 }

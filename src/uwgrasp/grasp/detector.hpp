@@ -61,6 +61,10 @@ struct Detection {
 Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cfg,
                     std::size_t& selected);
 
+// The whole processed scene and the plane its preprocessing removed: what the whole-vehicle
+// check treats as obstacles. Refers to `scene`, which must outlive it.
+Surroundings surroundings(const segment::Scene& scene);
+
 Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
                  const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed);
 
