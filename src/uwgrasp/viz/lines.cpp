@@ -3,27 +3,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/viz/picture.hpp"
+#include "uwgrasp/viz/plot_text.hpp"
 
 namespace uwgrasp::viz {
 
 namespace {
-const cv::Scalar kInk(40, 40, 40);
+using detail::kInk;
 constexpr int kX0 = 80, kX1 = 560, kY0 = 420, kY1 = 60;  // plot area; the legend is on the right
 
-void label(cv::Mat& img, const std::string& s, cv::Point at, double scale = 0.45, int thick = 1,
-           cv::Scalar colour = kInk) {
-  cv::putText(img, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, colour, thick, cv::LINE_AA);
-}
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 cv::Scalar series_colour(std::size_t i) {
   static const cv::Scalar palette[] = {{180, 119, 31}, {14, 127, 255}, {44, 160, 44}, {40, 39, 214},
                                        {189, 103, 148}, {75, 86, 140}, {194, 119, 227}, {127, 127, 127}};
@@ -75,16 +66,16 @@ cv::Mat line_plot(std::span<const Series> series, const Axes& axes) {
         cv::line(img, at(s.x[i - 1], s.y[i - 1]), at(s.x[i], s.y[i]), series_colour(k), 2, cv::LINE_AA);
     const int y = kY1 + 10 + 22 * static_cast<int>(k);
     cv::line(img, {kX1 + 15, y - 4}, {kX1 + 40, y - 4}, series_colour(k), 3);
-    label(img, s.name, {kX1 + 46, y});
+    detail::text(img, s.name, {kX1 + 46, y}, 0.45);
   }
   cv::rectangle(img, {kX0, kY1}, {kX1, kY0}, kInk);
   for (int i = 0; i <= 4; ++i) {
-    label(img, fmt(xr.lo + (xr.hi - xr.lo) * i / 4), {kX0 + (kX1 - kX0) * i / 4 - 12, kY0 + 20});
-    label(img, fmt(yr.lo + (yr.hi - yr.lo) * i / 4), {8, kY0 - (kY0 - kY1) * i / 4 + 5});
+    detail::text(img, detail::short_number(xr.lo + (xr.hi - xr.lo) * i / 4), {kX0 + (kX1 - kX0) * i / 4 - 12, kY0 + 20}, 0.45);
+    detail::text(img, detail::short_number(yr.lo + (yr.hi - yr.lo) * i / 4), {8, kY0 - (kY0 - kY1) * i / 4 + 5}, 0.45);
   }
-  label(img, axes.title, {kX0, 35}, 0.65, 2);
-  label(img, axes.xlabel, {kX0 + (kX1 - kX0) / 2 - 30, 465}, 0.5);
-  label(img, axes.ylabel, {8, kY1 - 12}, 0.5);
+  detail::text(img, axes.title, {kX0, 35}, 0.65, 2);
+  detail::text(img, axes.xlabel, {kX0 + (kX1 - kX0) / 2 - 30, 465}, 0.5);
+  detail::text(img, axes.ylabel, {8, kY1 - 12}, 0.5);
   return img;
 }
 

@@ -1,4 +1,5 @@
 #include "uwgrasp/viz/picture.hpp"
+#include "uwgrasp/viz/plot_text.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -86,9 +87,7 @@ void draw_colour_bar(cv::Mat& img, double lo, double hi, const std::string& name
   }
   cv::rectangle(img, {x, top}, {x + 18, top + h}, kText);
   const auto label = [&](double v, int y) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
-    cv::putText(img, buf, {x - 6, y}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kText, 1, cv::LINE_AA);
+    cv::putText(img, detail::short_number(v), {x - 6, y}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kText, 1, cv::LINE_AA);
   };
   label(hi, top - 8);
   label(lo, top + h + 18);

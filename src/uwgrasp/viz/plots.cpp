@@ -7,21 +7,12 @@
 
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/viz/picture.hpp"
+#include "uwgrasp/viz/plot_text.hpp"
 
 namespace uwgrasp::viz {
 
-namespace {
-const cv::Scalar kInk(40, 40, 40);
-
-void text(cv::Mat& img, const std::string& s, cv::Point at, double scale = 0.5, int thick = 1) {
-  cv::putText(img, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, kInk, thick, cv::LINE_AA);
-}
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
-}  // namespace
+using detail::kInk;
+using detail::text;
 
 cv::Vec3b value_colour(double t) {
   static const cv::Mat lut = [] {
@@ -68,7 +59,7 @@ cv::Mat histogram(std::span<const double> values, int bins, double lo, double hi
   cv::line(img, {x0, y0}, {x0, y1}, kInk);
   for (int i = 0; i <= 4; ++i) {
     const int x = x0 + (x1 - x0) * i / 4;
-    text(img, fmt(lo + (hi - lo) * i / 4), {x - 15, y0 + 20}, 0.45);
+    text(img, detail::short_number(lo + (hi - lo) * i / 4), {x - 15, y0 + 20}, 0.45);
     const int y = y0 - (y0 - y1) * i / 4;
     text(img, std::to_string(top * i / 4), {x0 - 45, y + 5}, 0.45);
   }
