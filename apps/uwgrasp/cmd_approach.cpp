@@ -95,11 +95,10 @@ cv::Mat plots(const vehicle::ApproachResult& r, const io::VehicleConfig& v, cons
 
 void print_result(const vehicle::ApproachResult& r, const io::GraspRecord& g, const Eigen::Vector3d& current) {
   const Eigen::Vector3d p = g.level_from_vehicle.translation();
+  const Eigen::Vector3d rpy = rpy_from_matrix(g.level_from_vehicle.linear()) * kDeg;
   std::printf("grasp %zu%s%s (score %.3f): vehicle to (%.3f, %.3f, %.3f) m, rpy (%.1f, %.1f, %.1f) deg\n",
               g.rank, g.object.empty() ? "" : " on the ", g.object.c_str(), g.score, p.x(), p.y(), p.z(),
-              rpy_from_matrix(g.level_from_vehicle.linear()).x() * kDeg,
-              rpy_from_matrix(g.level_from_vehicle.linear()).y() * kDeg,
-              rpy_from_matrix(g.level_from_vehicle.linear()).z() * kDeg);
+              rpy.x(), rpy.y(), rpy.z());
   std::printf("current (%.2f, %.2f, %.2f) m/s; standoff %.2f m\n", current.x(), current.y(), current.z(),
               g.config.grasp.reach.standoff);
   std::printf("reached: %s\n", r.reached ? "yes" : "NO");
@@ -132,12 +131,7 @@ void add_approach_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner
     if (!o->common.config_path.empty()) g.config = session.config;
     const io::VehicleConfig& v = g.config.vehicle;
     const Eigen::Vector3d current = o->current.empty() ? v.current : parse_current(o->current);
-    vehicle::ApproachTask task;
-    task.start.attitude = quat_from_rpy(g.config.grasp.frames.capture_roll, g.config.grasp.frames.capture_pitch, 0.0);
-    task.goal = g.level_from_vehicle.translation();
-    task.goal_attitude = Eigen::Quaterniond(g.level_from_vehicle.linear());
-    task.approach_axis = g.level_from_gripper.linear().col(0).normalized();
-    task.standoff = g.config.grasp.reach.standoff;
+    vehicle::ApproachTask task = approach_task(g.level_from_vehicle, g.level_from_gripper, g.config);
     task.current = current;
     progress("uwgrasp approach: simulating");
     const vehicle::ApproachResult r = vehicle::simulate_approach(v.params, v.control, task);

@@ -18,17 +18,6 @@ namespace uwgrasp::app {
 namespace {
 constexpr double kPi = std::numbers::pi;
 
-vehicle::ApproachTask approach_task(const grasp::Grasp& g, const io::Config& cfg) {
-  vehicle::ApproachTask t;
-  t.start.attitude = quat_from_rpy(cfg.grasp.frames.capture_roll, cfg.grasp.frames.capture_pitch, 0.0);
-  t.goal = g.level_from_vehicle.translation();
-  t.goal_attitude = Eigen::Quaterniond(g.level_from_vehicle.linear());
-  t.approach_axis = g.level_from_gripper.linear().col(0).normalized();
-  t.standoff = cfg.grasp.reach.standoff;
-  t.record_every = 50;
-  return t;
-}
-
 // Utilisation of holding roll (axis 0), pitch (1) or yaw (2) at `angle`.
 double hold_at(const vehicle::VehicleParams& p, const vehicle::Allocator& a, int axis, double angle,
                const Eigen::Vector3d& current) {
@@ -73,16 +62,15 @@ double saturation_angle(const vehicle::VehicleParams& p, const vehicle::Allocato
 VehicleRun run_vehicle(const grasp::Detection& d, const grasp::Grasp& g, const io::Config& cfg) {
   VehicleRun v;
   const grasp::Gripper gripper = grasp::make_gripper(cfg.grasp.gripper);
-  const grasp::Surroundings around{d.scene.pre.cloud.points, d.scene.pre.plane.found,
-                                   d.scene.pre.plane.coefficients};
-  const grasp::Obstacles o = grasp::make_obstacles(around, d.result.frames);
+  const grasp::Obstacles o = grasp::make_obstacles(grasp::surroundings(d.scene), d.result.frames);
   const auto solids = grasp::vehicle_solids(gripper, d.result.frames, cfg.grasp.reach);
   grasp::Candidate c;
   c.position = g.level_from_gripper.translation().cast<float>();
   c.rotation = g.level_from_gripper.linear().cast<float>();
   v.reach = grasp::reach_check(o, solids, c, cfg.grasp.reach);
   v.hold = g.hold_cost;
-  vehicle::ApproachTask t = approach_task(g, cfg);
+  vehicle::ApproachTask t = approach_task(g.level_from_vehicle, g.level_from_gripper, cfg);
+  t.record_every = 50;  // only the outcome is reported
   for (int k = 0; k < 2; ++k) {
     t.current = k ? Eigen::Vector3d(-kHeadCurrent, 0, 0) : Eigen::Vector3d::Zero();
     const auto r = vehicle::simulate_approach(cfg.vehicle.params, cfg.vehicle.control, t);

@@ -101,6 +101,17 @@ std::vector<viz::Wire> grasp_wires(const std::vector<grasp::Grasp>& grasps, cons
   return out;
 }
 
+vehicle::ApproachTask approach_task(const Pose& level_from_vehicle, const Pose& level_from_gripper,
+                                    const io::Config& cfg) {
+  vehicle::ApproachTask t;
+  t.start.attitude = quat_from_rpy(cfg.grasp.frames.capture_roll, cfg.grasp.frames.capture_pitch, 0.0);
+  t.goal = level_from_vehicle.translation();
+  t.goal_attitude = Eigen::Quaterniond(level_from_vehicle.linear());
+  t.approach_axis = level_from_gripper.linear().col(0).normalized();
+  t.standoff = cfg.grasp.reach.standoff;
+  return t;
+}
+
 void write_png(const std::string& path, const cv::Mat& image) {
   const std::vector<std::uint8_t> bytes = viz::encode_png(image);
   io::write_atomically(path, [&](const std::string& tmp) {

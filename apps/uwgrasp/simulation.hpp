@@ -10,6 +10,7 @@
 #include "uwgrasp/io/config.hpp"
 #include "uwgrasp/io/scene_yaml.hpp"
 #include "uwgrasp/sim/render.hpp"
+#include "uwgrasp/vehicle/approach.hpp"
 #include "uwgrasp/viz/picture.hpp"
 
 namespace uwgrasp::app {
@@ -50,6 +51,12 @@ io::Config object_config(const Simulation& s, const sim::Frame& f, std::size_t i
 // in the camera frame, valued by score.
 std::vector<viz::Wire> grasp_wires(const std::vector<grasp::Grasp>& grasps, const grasp::Frames& f,
                                    const grasp::GripperConfig& gripper, bool body = true);
+
+// The approach onto a grasp (T_LB to reach, T_LG whose x is the approach axis) from where the
+// vehicle took the picture: at rest at L's origin with the capture roll and pitch, the
+// configured standoff, still water.
+vehicle::ApproachTask approach_task(const Pose& level_from_vehicle, const Pose& level_from_gripper,
+                                    const io::Config& cfg);
 
 void write_png(const std::string& path, const cv::Mat& image);
 
