@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "shapes.hpp"
@@ -9,46 +10,76 @@
 
 namespace uwgrasp::grasp {
 
-TEST(Bvh, EveryPointInOneLeafInsideEveryAncestor) {
-  Cloud c = test::sphere(5000, 0.2f, Eigen::Vector3f(1, 2, 3));
-  const PointBvh b = build_bvh(c.points, 8);
-  ASSERT_EQ(b.points.size(), c.size());
-  // index is a permutation and points follows it.
-  std::vector<std::uint32_t> idx = b.index;
-  std::sort(idx.begin(), idx.end());
-  for (std::uint32_t i = 0; i < idx.size(); ++i) ASSERT_EQ(idx[i], i);
-  for (std::size_t k = 0; k < b.points.size(); ++k) ASSERT_EQ(b.points[k], c.points[b.index[k]]);
-  // Walk: children partition their parent; leaves hold at most 8; bounds hold their points.
-  std::vector<int> seen(c.size(), 0);
-  std::vector<std::uint32_t> stack{0};
-  while (!stack.empty()) {
-    const BvhNode& n = b.nodes[stack.back()];
-    const std::uint32_t i = stack.back();
-    stack.pop_back();
-    for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
-      ASSERT_TRUE(((b.points[k] - n.centre).cwiseAbs() - n.half).maxCoeff() <= 0.0f);
-    if (n.leaf()) {
-      ASSERT_LE(n.count, 8u);
-      for (std::uint32_t k = n.first; k < n.first + n.count; ++k) ++seen[k];
-    } else {
-      const BvhNode& l = b.nodes[i + 1];
-      const BvhNode& r = b.nodes[n.right];
-      ASSERT_EQ(l.first, n.first);
-      ASSERT_EQ(r.first, l.first + l.count);
-      ASSERT_EQ(l.count + r.count, n.count);
-      stack.push_back(i + 1);
-      stack.push_back(n.right);
+namespace {
+Eigen::Vector3f lane_centre(const BvhNode& n, int k) { return {n.cx[k], n.cy[k], n.cz[k]}; }
+Eigen::Vector3f lane_half(const BvhNode& n, int k) { return {n.hx[k], n.hy[k], n.hz[k]}; }
+bool holds(const BvhNode& n, int k, const Eigen::Vector3f& p, float tolerance = 0.0f) {
+  return ((p - lane_centre(n, k)).cwiseAbs() - lane_half(n, k)).maxCoeff() <= tolerance;
+}
+}  // namespace
+
+TEST(Bvh, EveryPointUnderOneLeafInsideEveryAncestor) {
+  for (const int size : {5000, 33, 8, 1}) {
+    SCOPED_TRACE(size);
+    Cloud c = test::sphere(size, 0.2f, Eigen::Vector3f(1, 2, 3));
+    const PointBvh b = build_bvh(c.points);
+    ASSERT_EQ(b.points.size(), c.size());
+    // index is a permutation and points (and the coordinate arrays) follow it.
+    std::vector<std::uint32_t> idx = b.index;
+    std::sort(idx.begin(), idx.end());
+    for (std::uint32_t i = 0; i < idx.size(); ++i) ASSERT_EQ(idx[i], i);
+    ASSERT_EQ(b.x.size() % kLeafPoints, 0u);
+    for (std::size_t k = 0; k < b.x.size(); ++k) {
+      if (k >= c.size()) {
+        ASSERT_TRUE(std::isnan(b.x[k]));  // padding that no test accepts
+        continue;
+      }
+      ASSERT_EQ(b.points[k], c.points[b.index[k]]);
+      ASSERT_EQ(Eigen::Vector3f(b.x[k], b.y[k], b.z[k]), b.points[k]);
     }
+    ASSERT_EQ(b.levels.back().size(), 1u);  // one root
+    // Every child lane holds the points under it, its lanes' boxes sit inside it, and the
+    // counts add up to the cloud; missing children are NaN.
+    std::uint32_t total = 0;
+    for (std::uint32_t level = 0; level < b.levels.size(); ++level)
+      for (std::uint32_t j = 0; j < b.levels[level].size(); ++j)
+        for (int k = 0; k < 4; ++k) {
+          const BvhNode& n = b.levels[level][j];
+          const std::uint32_t first = b.first(level, j, k), count = b.count(level, j, k);
+          if (count == 0) {
+            ASSERT_TRUE(std::isnan(n.cx[k]) && std::isnan(n.hz[k]));
+            continue;
+          }
+          if (level == b.top()) total += count;
+          for (std::uint32_t p = first; p < first + count; ++p) ASSERT_TRUE(holds(n, k, b.points[p]));
+          if (level == 0) {
+            ASSERT_LE(count, kLeafPoints);
+            continue;
+          }
+          const BvhNode& child = b.levels[level - 1][4 * j + std::uint32_t(k)];
+          std::uint32_t sum = 0;
+          for (int q = 0; q < 4; ++q) sum += b.count(level - 1, 4 * j + std::uint32_t(k), q);
+          ASSERT_EQ(sum, count);
+          ASSERT_EQ(b.first(level - 1, 4 * j + std::uint32_t(k), 0), first);
+          for (int q = 0; q < 4; ++q)
+            if (b.count(level - 1, 4 * j + std::uint32_t(k), q) > 0) {
+              const Eigen::Vector3f lo = lane_centre(child, q) - lane_half(child, q);
+              const Eigen::Vector3f hi = lane_centre(child, q) + lane_half(child, q);
+              // Both boxes carry the same padding; allow the rounding of centre +- half.
+              ASSERT_TRUE(holds(n, k, lo, 1e-6f) && holds(n, k, hi, 1e-6f));
+            }
+        }
+    EXPECT_EQ(total, c.size());
   }
-  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
 }
 
-TEST(Bvh, SinglePointAndCoincidentPoints) {
-  const std::vector<Eigen::Vector3f> one{Eigen::Vector3f(1, 1, 1)};
-  EXPECT_EQ(build_bvh(one).nodes.size(), 1u);
+TEST(Bvh, CoincidentPoints) {
   const std::vector<Eigen::Vector3f> same(100, Eigen::Vector3f(0.5f, 0, 0));
   const PointBvh b = build_bvh(same);
-  EXPECT_EQ(b.nodes.front().count, 100u);
+  std::uint32_t total = 0;
+  for (int k = 0; k < 4; ++k) total += b.count(b.top(), 0, k);
+  EXPECT_EQ(total, 100u);
+  EXPECT_EQ(b.levels[0].size(), 4u);  // 13 leaves of 8, four to a node
 }
 
 TEST(Bvh, RejectsEmptyAndNonFinite) {

@@ -3,41 +3,48 @@
 #include <tbb/parallel_for.h>
 
 #include <array>
+#include <bit>
 #include <limits>
+
+#include "uwgrasp/grasp/lanes.hpp"
 
 namespace uwgrasp::grasp {
 
 namespace {
-// A candidate's frame: local = Rt * (world - t).
+using lanes::Box4;
+using lanes::M4;
+using lanes::V3;
+
+// The gripper's boxes (gripper frame) broadcast to four lanes, once per call.
+struct GripperLanes {
+  Box4 bounds, closing;
+  std::array<Box4, kParts> solids;
+  explicit GripperLanes(const Gripper& g)
+      : bounds(Box4::splat(g.bounds.lo, g.bounds.hi)), closing(Box4::splat(g.closing.lo, g.closing.hi)) {
+    for (std::size_t s = 0; s < kParts; ++s) solids[s] = Box4::splat(g.solids[s].lo, g.solids[s].hi);
+  }
+};
+
+// A box's world-axis bounds in L as centre and half extents, broadcast.
+struct Near4 {
+  V3 centre, half;
+};
+
+// A candidate's frame: local = Rt * (world - t), with the world-axis bounds of its boxes in L.
 struct LocalFrame {
-  Eigen::Matrix3f Rt, absRt;
-  Eigen::Vector3f t;
-  Eigen::Vector3f world_centre, world_half;  // world-axis bounds of the whole gripper
-  Eigen::Vector3f closing_centre, closing_half;  // and of the closing region
-  std::array<Eigen::Vector3f, kParts> part_centre, part_half;  // and of each solid part
+  lanes::Frame4 to_gripper;
+  Near4 bounds, closing;               // the whole gripper, the closing region
+  std::array<Near4, kParts> solids{};  // each solid part
 };
 
 LocalFrame local_frame(const Gripper& g, const Candidate& c) {
-  LocalFrame f;
-  f.Rt = c.rotation.transpose();
-  f.absRt = f.Rt.cwiseAbs();
-  f.t = c.position;
-  f.world_centre = c.rotation * g.bounds.centre() + c.position;
-  f.world_half = c.rotation.cwiseAbs() * g.bounds.half();
-  f.closing_centre = c.rotation * g.closing.centre() + c.position;
-  f.closing_half = c.rotation.cwiseAbs() * g.closing.half();
-  for (int s = 0; s < kParts; ++s) {
-    f.part_centre[s] = c.rotation * g.solids[s].centre() + c.position;
-    f.part_half[s] = c.rotation.cwiseAbs() * g.solids[s].half();
-  }
+  const Eigen::Matrix3f abs_r = c.rotation.cwiseAbs();
+  const auto near = [&](const Box& b) {
+    return Near4{V3::splat(c.rotation * b.centre() + c.position), V3::splat(abs_r * b.half())};
+  };
+  LocalFrame f{lanes::Frame4(c.rotation.transpose(), c.position), near(g.bounds), near(g.closing), {}};
+  for (std::size_t s = 0; s < kParts; ++s) f.solids[s] = near(g.solids[s]);
   return f;
-}
-
-bool overlaps(const Eigen::Vector3f& lo, const Eigen::Vector3f& hi, const Box& b) {
-  return (lo.array() <= b.hi.array()).all() && (hi.array() >= b.lo.array()).all();
-}
-bool inside(const Eigen::Vector3f& lo, const Eigen::Vector3f& hi, const Box& b) {
-  return (lo.array() >= b.lo.array()).all() && (hi.array() <= b.hi.array()).all();
 }
 
 Reject collision(int part) { return static_cast<Reject>(int(Reject::collision_left_finger) + part); }
@@ -84,63 +91,95 @@ struct Closing {
   }
 };
 
+V3 centres(const BvhNode& n) { return {lanes::load(n.cx), lanes::load(n.cy), lanes::load(n.cz)}; }
+V3 halves(const BvhNode& n) { return {lanes::load(n.hx), lanes::load(n.hy), lanes::load(n.hz)}; }
+
 struct Walker {
   const PointBvh& bvh;
-  const Gripper& g;
+  const GripperLanes& g;
   const LocalFrame& f;
 
-  // The node's box in the gripper frame (conservative), or false when it is apart from the
-  // gripper along a world axis or a gripper axis.
-  bool local_box(const BvhNode& n, const Box& target, const Eigen::Vector3f& world_centre,
-                 const Eigen::Vector3f& world_half, Eigen::Vector3f& lo, Eigen::Vector3f& hi) const {
-    if (((n.centre - world_centre).cwiseAbs() - n.half - world_half).maxCoeff() > 0.0f) return false;
-    const Eigen::Vector3f cl = f.Rt * (n.centre - f.t), hl = f.absRt * n.half;
-    lo = cl - hl, hi = cl + hl;
-    return overlaps(lo, hi, target);
+  // The children's boxes in the gripper frame (conservative), and the children that are near
+  // the target along the world axes and overlap it along the gripper axes.
+  M4 children(const BvhNode& n, const Box4& target, const Near4& world, Box4& local) const {
+    const V3 c = centres(n), h = halves(n);
+    const M4 near = lanes::near(c, h, world.centre, world.half);
+    if (!lanes::bits(near)) return near;
+    local = f.to_gripper.boxes(c, h);
+    return near & lanes::overlap(local, target);
   }
 
-  // Phase 1: the first point in a solid part, if any.
-  Reject solids(std::uint32_t i) const {
-    const BvhNode& n = bvh.nodes[i];
-    Eigen::Vector3f lo, hi;
-    if (!local_box(n, g.bounds, f.world_centre, f.world_half, lo, hi)) return Reject::none;
-    bool touches = false;
-    for (int s = 0; s < kParts; ++s) {
-      if (!overlaps(lo, hi, g.solids[s])) continue;
-      if (inside(lo, hi, g.solids[s])) return collision(s);  // every point of the node is in it
-      // Separated along a world axis after all?
-      touches = touches ||
-                ((n.centre - f.part_centre[s]).cwiseAbs() - n.half - f.part_half[s]).maxCoeff() <= 0.0f;
+  // Phase 1: the first point in a solid part under node j of `level`, if any.
+  Reject solids(std::uint32_t level, std::uint32_t j) const {
+    const BvhNode& n = bvh.levels[level][j];
+    Box4 local;
+    const V3 c0 = centres(n), h0 = halves(n);
+    const M4 m = lanes::near(c0, h0, f.bounds.centre, f.bounds.half);
+    if (!lanes::bits(m)) return Reject::none;
+    local = f.to_gripper.boxes(c0, h0);
+    M4 touch = {0, 0, 0, 0};
+    for (std::size_t s = 0; s < kParts; ++s) {
+      const M4 hit = m & lanes::overlap(local, g.solids[s]);
+      if (!lanes::bits(hit)) continue;
+      // A child wholly inside a part has all its points in it.
+      if (lanes::bits(hit & lanes::inside(local, g.solids[s]))) return collision(int(s));
+      touch |= hit & lanes::near(centres(n), halves(n), f.solids[s].centre, f.solids[s].half);
     }
-    if (!touches) return Reject::none;
-    if (n.leaf()) {
-      for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
-        const Reject r = solid_at(g, f.Rt * (bvh.points[k] - f.t));
-        if (r != Reject::none) return r;
-      }
-      return Reject::none;
+    for (int t = lanes::bits(touch); t != 0; t &= t - 1) {
+      const std::uint32_t child = 4 * j + static_cast<std::uint32_t>(std::countr_zero(unsigned(t)));
+      const Reject r = level == 0 ? leaf_solids(child) : solids(level - 1, child);
+      if (r != Reject::none) return r;
     }
-    const Reject r = solids(i + 1);
-    return r != Reject::none ? r : solids(n.right);
+    return Reject::none;
+  }
+
+  V3 leaf_points(std::uint32_t k) const {
+    return f.to_gripper.point(V3{lanes::load(&bvh.x[k]), lanes::load(&bvh.y[k]), lanes::load(&bvh.z[k])});
+  }
+
+  Reject leaf_solids(std::uint32_t leaf) const {
+    for (std::uint32_t k = leaf * kLeafPoints; k < (leaf + 1) * kLeafPoints; k += 4) {
+      const V3 p = leaf_points(k);
+      const M4 in = lanes::contains(p, g.bounds);
+      if (!lanes::bits(in)) continue;
+      std::array<int, kParts> hit{};
+      int any = 0;
+      for (std::size_t s = 0; s < kParts; ++s)
+        any |= hit[s] = lanes::bits(in & lanes::contains(p, g.solids[s]));
+      if (any == 0) continue;
+      const int lane = std::countr_zero(unsigned(any));  // the first point, then its first part
+      for (std::size_t s = 0; s < kParts; ++s)
+        if ((hit[s] >> lane) & 1) return collision(int(s));
+    }
+    return Reject::none;
   }
 
   // Phase 2: the closing region's statistics (no point is in a solid part any more).
-  void closing(std::uint32_t i, Closing& acc) const {
-    const BvhNode& n = bvh.nodes[i];
-    Eigen::Vector3f lo, hi;
-    if (!local_box(n, g.closing, f.closing_centre, f.closing_half, lo, hi)) return;
-    if (inside(lo, hi, g.closing) && acc.cannot_improve(lo, hi)) {
-      acc.out.inliers += n.count;
-      return;
+  void closing(std::uint32_t level, std::uint32_t j, Closing& acc) const {
+    const BvhNode& n = bvh.levels[level][j];
+    Box4 local;
+    const M4 m = children(n, g.closing, f.closing, local);
+    if (!lanes::bits(m)) return;
+    const int in = lanes::bits(m & lanes::inside(local, g.closing));
+    for (int t = lanes::bits(m); t != 0; t &= t - 1) {
+      const int lane = std::countr_zero(unsigned(t));
+      const std::uint32_t child = 4 * j + static_cast<std::uint32_t>(lane);
+      if (((in >> lane) & 1) && acc.cannot_improve(local.lo.lane(lane), local.hi.lane(lane)))
+        acc.out.inliers += bvh.count(level, j, lane);
+      else if (level == 0)
+        leaf_closing(child, acc);
+      else
+        closing(level - 1, child, acc);
     }
-    if (!n.leaf()) {
-      closing(i + 1, acc);
-      closing(n.right, acc);
-      return;
-    }
-    for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
-      const Eigen::Vector3f p = f.Rt * (bvh.points[k] - f.t);
-      if (g.closing.contains(p)) acc.add(p, bvh.index[k]);
+  }
+
+  void leaf_closing(std::uint32_t leaf, Closing& acc) const {
+    for (std::uint32_t k = leaf * kLeafPoints; k < (leaf + 1) * kLeafPoints; k += 4) {
+      const V3 p = leaf_points(k);
+      for (int t = lanes::bits(lanes::contains(p, g.closing)); t != 0; t &= t - 1) {
+        const int lane = std::countr_zero(unsigned(t));
+        acc.add(p.lane(lane), bvh.index[k + std::uint32_t(lane)]);
+      }
     }
   }
 };
@@ -159,13 +198,14 @@ const char* reject_name(Reject r) {
 std::vector<Check> check_candidates(const PointBvh& bvh, const Gripper& g,
                                     std::span<const Candidate> candidates) {
   std::vector<Check> out(candidates.size());
+  const GripperLanes gl(g);
   tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
     const LocalFrame f = local_frame(g, candidates[i]);
-    const Walker w{bvh, g, f};
-    out[i].reason = w.solids(0);
+    const Walker w{bvh, gl, f};
+    out[i].reason = w.solids(bvh.top(), 0);
     if (out[i].reason != Reject::none) return;
     Closing acc{out[i]};
-    w.closing(0, acc);
+    w.closing(bvh.top(), 0, acc);
     acc.finish(g);
   });
   return out;
@@ -173,10 +213,10 @@ std::vector<Check> check_candidates(const PointBvh& bvh, const Gripper& g,
 
 Check check_brute(std::span<const Eigen::Vector3f> points, const Gripper& g, const Candidate& c) {
   Check out;
-  const Eigen::Matrix3f Rt = c.rotation.transpose();
+  const lanes::Frame4 to_gripper(c.rotation.transpose(), c.position);
   Closing acc{out};
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const Eigen::Vector3f p = Rt * (points[k] - c.position);
+    const Eigen::Vector3f p = to_gripper.point(points[k]);
     const Reject r = solid_at(g, p);
     if (r != Reject::none) return Check{r};
     if (g.closing.contains(p)) acc.add(p, static_cast<std::uint32_t>(k));
@@ -188,9 +228,9 @@ Check check_brute(std::span<const Eigen::Vector3f> points, const Gripper& g, con
 std::vector<std::uint32_t> closing_points(std::span<const Eigen::Vector3f> points,
                                           const Gripper& g, const Candidate& c) {
   std::vector<std::uint32_t> out;
-  const Eigen::Matrix3f Rt = c.rotation.transpose();
+  const lanes::Frame4 to_gripper(c.rotation.transpose(), c.position);
   for (std::size_t k = 0; k < points.size(); ++k)
-    if (g.closing.contains(Rt * (points[k] - c.position))) out.push_back(static_cast<std::uint32_t>(k));
+    if (g.closing.contains(to_gripper.point(points[k]))) out.push_back(static_cast<std::uint32_t>(k));
   return out;
 }
 

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <limits>
 #include <string>
 
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/lanes.hpp"
 
 namespace uwgrasp::grasp {
 
@@ -63,22 +65,25 @@ struct Query {
   Eigen::Matrix3f Rt;      // L to the candidate's gripper frame
   Eigen::Vector3f lo, hi;  // the swept solid's bounds in L
 
-  // The worst hit under node i: at_grasp ends the search.
-  Hit walk(std::uint32_t i) const {
-    const BvhNode& n = bvh.nodes[i];
-    if (((n.centre - n.half).array() > hi.array()).any() ||
-        ((n.centre + n.half).array() < lo.array()).any())
-      return Hit::none;
-    if (!n.leaf()) {
-      const Hit a = walk(i + 1);
-      if (a == Hit::at_grasp) return a;
-      return std::max(a, walk(n.right));
-    }
+  // The worst hit under node j of `level`: at_grasp ends the search.
+  Hit walk(std::uint32_t level, std::uint32_t j) const {
+    const BvhNode& n = bvh.levels[level][j];
+    const lanes::V3 m{lanes::load(n.cx), lanes::load(n.cy), lanes::load(n.cz)};
+    const lanes::V3 h{lanes::load(n.hx), lanes::load(n.hy), lanes::load(n.hz)};
+    const lanes::Box4 box{{m.x - h.x, m.y - h.y, m.z - h.z}, {m.x + h.x, m.y + h.y, m.z + h.z}};
     Hit worst = Hit::none;
-    for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
-      worst = std::max(worst, segment_hit(solid, Rt * (bvh.points[k] - c.position), s));
-      if (worst == Hit::at_grasp) break;
+    for (int t = lanes::bits(lanes::overlap(box, lanes::Box4::splat(lo, hi))); t != 0 && worst != Hit::at_grasp; t &= t - 1) {
+      const int lane = std::countr_zero(unsigned(t));
+      worst = std::max(worst, level == 0 ? leaf(bvh.first(0, j, lane), bvh.count(0, j, lane))
+                                         : walk(level - 1, 4 * j + std::uint32_t(lane)));
     }
+    return worst;
+  }
+
+  Hit leaf(std::uint32_t first, std::uint32_t count) const {
+    Hit worst = Hit::none;
+    for (std::uint32_t k = first; k < first + count && worst != Hit::at_grasp; ++k)
+      worst = std::max(worst, segment_hit(solid, Rt * (bvh.points[k] - c.position), s));
     return worst;
   }
 };
@@ -144,13 +149,13 @@ Reject reach_check(const Obstacles& o, std::span<const Solid> solids, const Cand
   const float s = static_cast<float>(cfg.standoff);
   return verdict(solids, [&](std::size_t k) {
     const Hit plane = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
-    if (plane == Hit::at_grasp || o.bvh.nodes.empty()) return plane;
+    if (plane == Hit::at_grasp || o.bvh.empty()) return plane;
     Query q{o.bvh, solids[k], c, s, c.rotation.transpose(),
             Eigen::Vector3f::Constant(std::numeric_limits<float>::max()),
             Eigen::Vector3f::Constant(std::numeric_limits<float>::lowest())};
     for (float t : {0.0f, s})
       for (const auto& p : corners(solids[k], c, t)) q.lo = q.lo.cwiseMin(p), q.hi = q.hi.cwiseMax(p);
-    return std::max(plane, q.walk(0));
+    return std::max(plane, q.walk(o.bvh.top(), 0));
   });
 }
 

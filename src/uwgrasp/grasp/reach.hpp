@@ -48,7 +48,7 @@ std::vector<Solid> vehicle_solids(const Gripper& g, const Frames& f, const Reach
 // The scene in L, ready for many checks: points under a hierarchy, and the plane oriented so the
 // camera is on its positive side.
 struct Obstacles {
-  PointBvh bvh;  // empty cloud: no nodes
+  PointBvh bvh;  // empty() when the scene has no points
   bool has_plane = false;
   Eigen::Vector4f plane = Eigen::Vector4f::Zero();
 };
