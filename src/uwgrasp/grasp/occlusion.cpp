@@ -10,11 +10,25 @@ namespace uwgrasp::grasp {
 
 namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
-int bin(float v, float res) { return static_cast<int>(std::floor(v / res)); }
+// The bin of a normalised image coordinate: one multiplication, the same for the map and the
+// queries (a division per coordinate was most of the check's time).
+// floor without a libm call (SSE2 has no rounding instruction); coordinates beyond +-1e9 bins
+// (a point almost in the camera's plane) land far outside any map.
+int bin(float v, float inverse) {
+  const float x = std::clamp(v * inverse, -1e9f, 1e9f);  // NaN stays NaN: next line gives 0 or
+  if (!(x == x)) return std::numeric_limits<int>::min() / 2;  // ... here, outside the map
+  const int i = static_cast<int>(x);
+  return i - (x < static_cast<float>(i) ? 1 : 0);
+}
 }  // namespace
 
 float DepthMap::at(float x, float y) const {
-  const int u = bin(x, resolution) - u0, v = bin(y, resolution) - v0;
+  const float inverse = 1.0f / resolution;
+  return at_bin(bin(x, inverse), bin(y, inverse));
+}
+
+float DepthMap::at_bin(int u, int v) const {
+  u -= u0, v -= v0;
   if (u < 0 || v < 0 || u >= width || v >= height) return kInf;
   return depth[std::size_t(v) * std::size_t(width) + std::size_t(u)];
 }
@@ -23,31 +37,42 @@ DepthMap make_depth_map(std::span<const Eigen::Vector3f> pts, float resolution) 
   if (!(resolution > 0.0f)) throw Error("grasp.occlusion.resolution must be positive");
   DepthMap m;
   m.resolution = resolution;
+  const float inverse = 1.0f / resolution;
+  // Each point's bin once (points behind the camera cannot occlude anything in front of it).
+  std::vector<Eigen::Vector3i> bins;  // u, v, index
+  bins.reserve(pts.size());
   int u1 = std::numeric_limits<int>::min(), v1 = u1;
   m.u0 = m.v0 = std::numeric_limits<int>::max();
-  for (const auto& p : pts) {
-    if (!(p.z() > 0.0f)) continue;  // behind the camera: cannot occlude anything in front
-    const int u = bin(p.x() / p.z(), resolution), v = bin(p.y() / p.z(), resolution);
-    m.u0 = std::min(m.u0, u - 1), m.v0 = std::min(m.v0, v - 1);
-    u1 = std::max(u1, u + 1), v1 = std::max(v1, v + 1);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const Eigen::Vector3f& p = pts[i];
+    if (!(p.z() > 0.0f)) continue;
+    const float iz = 1.0f / p.z();
+    const int u = bin(p.x() * iz, inverse), v = bin(p.y() * iz, inverse);
+    bins.emplace_back(u, v, int(i));
+    // Two bins of margin: the dilation reaches one bin out, the outermost ring stays empty.
+    m.u0 = std::min(m.u0, u - 2), m.v0 = std::min(m.v0, v - 2);
+    u1 = std::max(u1, u + 2), v1 = std::max(v1, v + 2);
   }
-  if (u1 < m.u0) return m;  // nothing in front of the camera: an empty map
+  if (bins.empty()) return m;  // nothing in front of the camera: an empty map
   m.width = u1 - m.u0 + 1, m.height = v1 - m.v0 + 1;
   if (double(m.width) * m.height > 5e7) throw Error("grasp.occlusion.resolution is too fine for this object");
   std::vector<float> raw(std::size_t(m.width) * m.height, kInf);
-  for (const auto& p : pts) {
-    if (!(p.z() > 0.0f)) continue;
-    const int u = bin(p.x() / p.z(), resolution) - m.u0, v = bin(p.y() / p.z(), resolution) - m.v0;
-    float& d = raw[std::size_t(v) * m.width + u];
-    d = std::min(d, p.z());
+  for (const Eigen::Vector3i& b : bins) {
+    float& d = raw[std::size_t(b.y() - m.v0) * m.width + std::size_t(b.x() - m.u0)];
+    d = std::min(d, pts[std::size_t(b.z())].z());
   }
+  // Dilated by one bin: the minimum over 3 x 3, as a row pass then a column pass.
+  std::vector<float> rows(raw.size(), kInf);
+  for (int v = 0; v < m.height; ++v)
+    for (int u = 1; u + 1 < m.width; ++u) {
+      const float* r = &raw[std::size_t(v) * m.width + u];
+      rows[std::size_t(v) * m.width + u] = std::min({r[-1], r[0], r[1]});
+    }
   m.depth.assign(raw.size(), kInf);
   for (int v = 1; v + 1 < m.height; ++v)
     for (int u = 1; u + 1 < m.width; ++u) {
-      float d = kInf;
-      for (int dv = -1; dv <= 1; ++dv)
-        for (int du = -1; du <= 1; ++du) d = std::min(d, raw[std::size_t(v + dv) * m.width + (u + du)]);
-      m.depth[std::size_t(v) * m.width + u] = d;
+      const std::size_t k = std::size_t(v) * m.width + u;
+      m.depth[k] = std::min({rows[k - m.width], rows[k], rows[k + m.width]});
     }
   return m;
 }
@@ -77,10 +102,12 @@ bool occluded(const DepthMap& map, std::span<const Eigen::Vector3f> samples, con
   const Eigen::Matrix3f R = camera_from_level.linear().cast<float>() * c.rotation;
   const Eigen::Vector3f t =
       (camera_from_level * c.position.cast<double>()).cast<float>();
+  const float inverse = 1.0f / map.resolution;
   for (const auto& s : samples) {
     const Eigen::Vector3f q = R * s + t;
     if (!(q.z() > 0.0f)) continue;
-    const float behind = q.z() - map.at(q.x() / q.z(), q.y() / q.z());
+    const float iz = 1.0f / q.z();
+    const float behind = q.z() - map.at_bin(bin(q.x() * iz, inverse), bin(q.y() * iz, inverse));
     if (behind > cfg.tolerance && behind < cfg.thickness) return true;
   }
   return false;

@@ -29,6 +29,7 @@ struct DepthMap {
   int u0 = 0, v0 = 0, width = 0, height = 0;
   std::vector<float> depth;  // +inf where the object was not seen
   float at(float x, float y) const;  // +inf outside the map
+  float at_bin(int u, int v) const;  // the same by bin: u = floor(x / resolution)
 };
 
 DepthMap make_depth_map(std::span<const Eigen::Vector3f> camera_points, float resolution);
