@@ -70,7 +70,9 @@ void table_8_4(const Cloud& full, double pitch) {
       ts.push_back(t.ms("sample")), tc.push_back(t.ms("check")), tsc.push_back(t.ms("score"));
       to.push_back(t.ms("occlusion"));
       feasible = res.feasible();
-      collision_free = res.feasible() + res.rejections[int(grasp::Reject::occluded)];
+      // Everything the check passed: feasible, or rejected by a later stage.
+      collision_free = res.feasible();
+      for (int k = int(grasp::Reject::occluded); k < grasp::kRejectKinds; ++k) collision_free += res.rejections[std::size_t(k)];
     }
     // The thesis's method: every point of the cloud against each candidate's boxes.
     const LevelObject l = to_level(*c, cfg);

@@ -1,10 +1,12 @@
 #include "uwgrasp/grasp/occlusion.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/lanes.hpp"
 
 namespace uwgrasp::grasp {
 
@@ -96,6 +98,16 @@ std::vector<Eigen::Vector3f> part_samples(const Gripper& g, float spacing) {
   return out;
 }
 
+namespace {
+// bin() on four lanes.
+lanes::M4 bins(lanes::F4 v, float inverse) {
+  const lanes::F4 x = v * inverse;
+  const lanes::F4 c = x < -1e9f ? lanes::splat(-1e9f) : (x > 1e9f ? lanes::splat(1e9f) : x);
+  const lanes::M4 i = __builtin_convertvector(c, lanes::M4);
+  return i + (c < __builtin_convertvector(i, lanes::F4));  // true is -1: one bin down
+}
+}  // namespace
+
 bool occluded(const DepthMap& map, std::span<const Eigen::Vector3f> samples, const Candidate& c,
               const Pose& camera_from_level, const OcclusionConfig& cfg) {
   if (map.depth.empty()) return false;
@@ -103,12 +115,25 @@ bool occluded(const DepthMap& map, std::span<const Eigen::Vector3f> samples, con
   const Eigen::Vector3f t =
       (camera_from_level * c.position.cast<double>()).cast<float>();
   const float inverse = 1.0f / map.resolution;
-  for (const auto& s : samples) {
-    const Eigen::Vector3f q = R * s + t;
-    if (!(q.z() > 0.0f)) continue;
-    const float iz = 1.0f / q.z();
-    const float behind = q.z() - map.at_bin(bin(q.x() * iz, inverse), bin(q.y() * iz, inverse));
-    if (behind > cfg.tolerance && behind < cfg.thickness) return true;
+  // Four samples at a time; the last group repeats the last sample.
+  for (std::size_t k = 0; k < samples.size(); k += 4) {
+    float xs[4], ys[4], zs[4];
+    for (std::size_t l = 0; l < 4; ++l) {
+      const Eigen::Vector3f& p = samples[std::min(k + l, samples.size() - 1)];
+      xs[l] = p.x(), ys[l] = p.y(), zs[l] = p.z();
+    }
+    const lanes::V3 s{lanes::load(xs), lanes::load(ys), lanes::load(zs)};
+    const lanes::F4 qz = R(2, 0) * s.x + R(2, 1) * s.y + R(2, 2) * s.z + t.z();
+    const int front = lanes::bits(qz > 0.0f);
+    if (front == 0) continue;
+    const lanes::F4 iz = 1.0f / qz;
+    const lanes::M4 u = bins((R(0, 0) * s.x + R(0, 1) * s.y + R(0, 2) * s.z + t.x()) * iz, inverse);
+    const lanes::M4 v = bins((R(1, 0) * s.x + R(1, 1) * s.y + R(1, 2) * s.z + t.y()) * iz, inverse);
+    for (int f = front; f != 0; f &= f - 1) {
+      const int l = std::countr_zero(unsigned(f));
+      const float behind = qz[l] - map.at_bin(u[l], v[l]);
+      if (behind > cfg.tolerance && behind < cfg.thickness) return true;
+    }
   }
   return false;
 }
