@@ -123,7 +123,7 @@ struct Walker {
       if (!lanes::bits(hit)) continue;
       // A child wholly inside a part has all its points in it.
       if (lanes::bits(hit & lanes::inside(local, g.solids[s]))) return collision(int(s));
-      touch |= hit & lanes::near(centres(n), halves(n), f.solids[s].centre, f.solids[s].half);
+      touch |= hit & lanes::near(c0, h0, f.solids[s].centre, f.solids[s].half);
     }
     for (int t = lanes::bits(touch); t != 0; t &= t - 1) {
       const std::uint32_t child = 4 * j + static_cast<std::uint32_t>(std::countr_zero(unsigned(t)));
