@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 #include <pcl/filters/voxel_grid.h>
+#include <tbb/global_control.h>
 
 #include "pcl_convert.hpp"
 #include "shapes.hpp"
@@ -67,6 +68,35 @@ TEST(Voxel, CentroidColoursLabelsAndMapping) {
   EXPECT_EQ(m.voxel_of[2], VoxelResult::kDropped);
 }
 
+// Non-finite points scattered through a cloud larger than one work chunk: they map to kDropped,
+// the rest give exactly the voxels of the finite points alone, at one thread and at two.
+TEST(Voxel, SkipsNonFinitePointsSameAtAnyThreadCount) {
+  Cloud c, finite;
+  Rng r(3);
+  for (int i = 0; i < 60000; ++i) {
+    const Eigen::Vector3f p(r.normal(0.5, 0.2), r.normal(-0.1, 0.2), r.normal(2, 0.1));
+    c.points.push_back(i % 7 == 3 ? Eigen::Vector3f(NAN, 0, 0) : p);
+    if (i % 7 != 3) finite.points.push_back(p);
+  }
+  make_unorganised(c), make_unorganised(finite);
+  const auto at = [&](const Cloud& in, int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return voxel_grid(in, {true, 0.01f, 2});
+  };
+  const VoxelResult one = at(c, 1), two = at(c, 2), ref = at(finite, 2);
+  ASSERT_GT(ref.cloud.size(), 1000u);
+  EXPECT_EQ(one.cloud.points, ref.cloud.points);
+  EXPECT_EQ(two.cloud.points, ref.cloud.points);
+  EXPECT_EQ(one.voxel_of, two.voxel_of);
+  for (std::size_t i = 0, f = 0; i < c.size(); ++i) {
+    if (i % 7 == 3) {
+      ASSERT_EQ(one.voxel_of[i], VoxelResult::kDropped) << i;
+    } else {
+      ASSERT_EQ(one.voxel_of[i], ref.voxel_of[f++]) << i;
+    }
+  }
+}
+
 TEST(Voxel, DegenerateInputs) {
   EXPECT_TRUE(voxel_grid(Cloud{}, {true, 0.01f, 1}).cloud.empty());
   Cloud nan;
@@ -83,6 +113,11 @@ TEST(Voxel, DegenerateInputs) {
   huge.points = {{-1e6f, -1e6f, -1e6f}, {1e6f, 1e6f, 1e6f}};
   make_unorganised(huge);
   EXPECT_THROW(voxel_grid(huge, {true, 1e-4f, 1}), Error);
+  // Coordinates whose cell numbers do not fit an integer are refused, not wrapped.
+  Cloud far;
+  far.points = {{3e30f, 0, 0}};
+  make_unorganised(far);
+  EXPECT_THROW(voxel_grid(far, {true, 0.01f, 1}), Error);
 }
 
 }  // namespace uwgrasp::cloud

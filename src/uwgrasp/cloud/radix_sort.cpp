@@ -1,55 +1,107 @@
 #include "uwgrasp/cloud/radix_sort.hpp"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
+#include <memory>
+#include <utility>
+#include <vector>
 
 namespace uwgrasp::cloud {
 
 namespace {
-constexpr int kBits = 11;
-constexpr std::size_t kBuckets = std::size_t(1) << kBits;
-using Histogram = std::array<std::uint32_t, kBuckets>;
+// The first pass sorts on the top kTopBits of the field over the whole array; each of its
+// buckets then sorts on the rest of the field in place, where it fits in cache, in passes of at
+// most kLocalBits (or by insertion when it is small). One pass over memory instead of two or three.
+constexpr int kTopBits = 11;
+constexpr int kLocalBits = 8;
+constexpr std::size_t kInsertion = 32;
+
+struct Pass {
+  int shift;
+  std::uint64_t mask;
+  std::size_t digit(std::uint64_t item) const { return std::size_t((item >> shift) & mask); }
+};
+
+Pass field(int shift, int width) { return {shift, (std::uint64_t(1) << width) - 1}; }
+
+// One stable pass src -> dst over the whole array. Fixed chunks count their digits in parallel,
+// each chunk's output offsets are laid out bucket by bucket in chunk order, and every chunk
+// scatters its own range in parallel: exactly the order of a sequential pass at any thread
+// count. Returns where each bucket starts in dst (plus n at the end).
+std::vector<std::uint32_t> global_pass(const std::uint64_t* src, std::uint64_t* dst, std::size_t n, Pass pass) {
+  const std::size_t buckets = pass.mask + 1, chunks = std::clamp<std::size_t>(n / 32768, 1, 16);
+  const auto begin = [&](std::size_t c) { return n * c / chunks; };
+  std::vector<std::uint32_t> hist(chunks * buckets, 0u), starts(buckets + 1);
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    std::uint32_t* h = &hist[c * buckets];
+    for (std::size_t j = begin(c); j < begin(c + 1); ++j) ++h[pass.digit(src[j])];
+  });
+  std::uint32_t at = 0;
+  for (std::size_t d = 0; d < buckets; ++d) {
+    starts[d] = at;
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const std::uint32_t count = hist[c * buckets + d];
+      hist[c * buckets + d] = at;
+      at += count;
+    }
+  }
+  starts[buckets] = at;
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    std::uint32_t* next = &hist[c * buckets];
+    for (std::size_t j = begin(c); j < begin(c + 1); ++j) dst[next[pass.digit(src[j])]++] = src[j];
+  });
+  return starts;
+}
+
+// Stable sort of m items on `pass`'s field by insertion; for buckets of a few dozen items.
+void insertion_sort(std::uint64_t* a, std::size_t m, Pass pass) {
+  const auto key = [&](std::uint64_t x) { return (x >> pass.shift) & pass.mask; };
+  for (std::size_t i = 1; i < m; ++i) {
+    const std::uint64_t x = a[i];
+    std::size_t j = i;
+    for (; j > 0 && key(a[j - 1]) > key(x); --j) a[j] = a[j - 1];
+    a[j] = x;
+  }
+}
+
+// Sorts one bucket, now in `from`, on bits [lo, lo + bits) into `to` (from is scratch).
+void local_sort(std::uint64_t* from, std::uint64_t* to, std::size_t m, int lo, int bits) {
+  if (m <= kInsertion || bits <= 0) {
+    std::copy_n(from, m, to);
+    if (bits > 0) insertion_sort(to, m, field(lo, bits));
+    return;
+  }
+  const int passes = (bits + kLocalBits - 1) / kLocalBits, width = (bits + passes - 1) / passes;
+  std::uint64_t *src = from, *dst = to;
+  for (int p = 0; p < passes; ++p) {
+    const Pass pass = field(lo + p * width, std::min(width, bits - p * width));
+    std::array<std::uint32_t, std::size_t(1) << kLocalBits> next{};
+    for (std::size_t j = 0; j < m; ++j) ++next[pass.digit(src[j])];
+    if (next[pass.digit(src[0])] == m) continue;  // one digit for all: the pass changes nothing
+    std::uint32_t at = 0;
+    for (std::size_t d = 0; d <= pass.mask; ++d) at += std::exchange(next[d], at);
+    for (std::size_t j = 0; j < m; ++j) dst[next[pass.digit(src[j])]++] = src[j];
+    std::swap(src, dst);
+  }
+  if (src != to) std::copy_n(src, m, to);
+}
 }  // namespace
 
-// Each pass splits the input into fixed chunks: every chunk counts its digits in parallel, the
-// chunk's output offsets are laid out bucket by bucket in chunk order, and every chunk scatters
-// its own range in parallel. That is exactly the stable order of a sequential pass, so the
-// result does not depend on the thread count.
-void radix_sort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& idx, int bits) {
-  const std::size_t n = keys.size();
-  const std::size_t chunks = std::clamp<std::size_t>(n / 65536, 1, 16);
-  const auto begin = [&](std::size_t c) { return n * c / chunks; };
-  std::vector<Histogram> hist(chunks);
-  std::vector<std::uint64_t> k2(n);
-  std::vector<std::uint32_t> i2(n);
-  for (int shift = 0; shift < bits; shift += kBits) {
-    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
-      hist[c].fill(0);
-      for (std::size_t j = begin(c); j < begin(c + 1); ++j) ++hist[c][(keys[j] >> shift) & (kBuckets - 1)];
-    });
-    // A pass whose digit is the same for every key changes nothing.
-    std::size_t total_of_first = 0;
-    for (std::size_t d = 0; d < kBuckets && total_of_first == 0; ++d)
-      for (const Histogram& h : hist) total_of_first += h[d];
-    if (total_of_first == n) continue;
-    std::uint32_t at = 0;
-    for (std::size_t d = 0; d < kBuckets; ++d)
-      for (Histogram& h : hist) {
-        const std::uint32_t count = h[d];
-        h[d] = at;
-        at += count;
-      }
-    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
-      Histogram& next = hist[c];
-      for (std::size_t j = begin(c); j < begin(c + 1); ++j) {
-        const std::uint32_t to = next[(keys[j] >> shift) & (kBuckets - 1)]++;
-        k2[to] = keys[j], i2[to] = idx[j];
-      }
-    });
-    keys.swap(k2), idx.swap(i2);
-  }
+void radix_sort(std::span<std::uint64_t> items, int lo, int bits) {
+  const std::size_t n = items.size();
+  if (n < 2 || bits <= 0) return;
+  const int top = std::min(bits, kTopBits), rest = bits - top;
+  const std::unique_ptr<std::uint64_t[]> scratch(new std::uint64_t[n]);
+  const std::vector<std::uint32_t> starts = global_pass(items.data(), scratch.get(), n, field(lo + rest, top));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, starts.size() - 1, 16), [&](const auto& r) {
+    for (std::size_t d = r.begin(); d != r.end(); ++d) {
+      const std::size_t a = starts[d], m = starts[d + 1] - a;
+      local_sort(scratch.get() + a, items.data() + a, m, lo, rest);
+    }
+  });
 }
 
 }  // namespace uwgrasp::cloud

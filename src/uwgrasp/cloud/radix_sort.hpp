@@ -1,14 +1,16 @@
 #pragma once
-// Stable LSD radix sort of (key, index) pairs, shared by the voxel grid and the point BVH.
+// Stable LSD radix sort of 64-bit items on a bit field, shared by the voxel grid and the point
+// BVH. Callers pack a key above a point index in one word, so a pass moves 8 bytes per point
+// instead of a separate key and index.
 #include <cstdint>
-#include <vector>
+#include <span>
 
 namespace uwgrasp::cloud {
 
-// Sorts keys (and idx alongside) on the low `bits` bits of the keys, 11 bits per pass: equal
-// keys keep their input order, so anything summed in sorted order runs in a fixed order. All
-// digit histograms come from one read pass; a pass whose digit is the same for every key is
-// skipped.
-void radix_sort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& idx, int bits);
+// Sorts items on bits [lo, lo + bits) only, in place. Items with equal fields keep their input
+// order, so anything summed in sorted order runs in a fixed order; the result does not depend
+// on the thread count. One parallel pass over the whole array on the top 11 bits of the field,
+// then each bucket sorts on the rest in cache.
+void radix_sort(std::span<std::uint64_t> items, int lo, int bits);
 
 }  // namespace uwgrasp::cloud

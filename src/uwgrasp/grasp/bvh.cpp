@@ -83,15 +83,14 @@ void morton_order(std::span<const Eigen::Vector3f> points, PointBvh& b) {
   }
   const Eigen::Vector3f extent = (hi - lo).cwiseMax(1e-12f);
   const Eigen::Vector3f scale = Eigen::Vector3f::Constant(1023.0f).cwiseQuotient(extent);
-  std::vector<std::uint64_t> keys(points.size());
-  b.index.resize(points.size());
+  // The 30-bit Morton code above the 32-bit point index: one word per point to sort.
+  std::vector<std::uint64_t> items(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const auto& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) {
-      keys[i] = morton(points[i], lo, scale);
-      b.index[i] = static_cast<std::uint32_t>(i);
-    }
+    for (std::size_t i = r.begin(); i < r.end(); ++i) items[i] = (morton(points[i], lo, scale) << 32) | i;
   });
-  cloud::radix_sort(keys, b.index, 30);
+  cloud::radix_sort(items, 32, 30);
+  b.index.resize(points.size());
+  for (std::size_t i = 0; i < items.size(); ++i) b.index[i] = static_cast<std::uint32_t>(items[i]);
 }
 }  // namespace
 
