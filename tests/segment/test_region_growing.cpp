@@ -62,6 +62,33 @@ TEST(RegionGrowing, ASphereAndAPlaneAreTwoSegments) {
   EXPECT_GT(s.segments[1].size(), 1400u);   // the visible half of the sphere and more
 }
 
+// Regions are numbered in seed order, which is ascending curvature: a patch whose lowest
+// curvature is negative (a rounding artefact of the eigen solver) or -0 seeds before one at +0,
+// and equal curvatures seed by index.
+TEST(RegionGrowing, SeedsByAscendingCurvatureIncludingNegativeAndSignedZero) {
+  const auto patches = [](float a, float b, float c) {
+    Cloud cloud = test::plane_grid(20, 0.1f, 1.0f);
+    for (const float dx : {0.5f, 1.0f}) {
+      Cloud p = test::plane_grid(20, 0.1f, 1.0f);
+      for (auto& q : p.points) q.x() += dx;
+      test::append(cloud, p);
+    }
+    cloud.normals.assign(cloud.size(), Eigen::Vector3f(0, 0, 1));
+    cloud.curvature.assign(cloud.size(), 0.01f);
+    cloud.curvature[399] = a, cloud.curvature[400 + 7] = b, cloud.curvature[800 + 3] = c;
+    RegionConfig r;
+    r.min_size = 10;
+    const Segmentation s = grow_regions(cloud, r, {});
+    EXPECT_EQ(s.segments.size(), 3u);
+    std::vector<std::int32_t> first;  // the segment of each patch, in patch order
+    for (const std::uint32_t i : {0u, 400u, 800u}) first.push_back(s.label[i]);
+    return first;
+  };
+  EXPECT_EQ(patches(0.0f, -1e-9f, 0.005f), (std::vector<std::int32_t>{1, 0, 2}));
+  EXPECT_EQ(patches(0.0f, -0.0f, 0.005f), (std::vector<std::int32_t>{0, 1, 2}));  // tie: index
+  EXPECT_EQ(patches(0.002f, 0.003f, -0.5f), (std::vector<std::int32_t>{1, 2, 0}));
+}
+
 TEST(RegionGrowing, MatchesPclRegionGrowingOnARealScan) {
   UWGRASP_DATA_OR_SKIP(path, "clouds/milk_color.pcd");
   Cloud c = cloud::remove_invalid(io::load_cloud(path)).cloud;

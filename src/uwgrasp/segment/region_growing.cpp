@@ -1,12 +1,14 @@
 #include "uwgrasp/segment/region_growing.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <numeric>
 #include <string>
 
 #include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/cloud/radix_sort.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/segment/merge.hpp"
 
@@ -27,7 +29,6 @@ void check_inputs(const Cloud& c, const RegionConfig& r, const ColorConfig& col)
   if (r.k < 2) throw Error("segment.region.k must be at least 2, got " + std::to_string(r.k));
 }
 
-// Seed order: points with a finite normal by ascending curvature, ties by index.
 // The first k entries of each list (lists are nearest first).
 cloud::Neighbours truncate(const cloud::Neighbours& in, std::size_t k) {
   if (in.k <= k) return in;
@@ -43,14 +44,24 @@ cloud::Neighbours truncate(const cloud::Neighbours& in, std::size_t k) {
   return out;
 }
 
+// Orders floats as unsigned integers: the sign bit set on positives, every bit flipped on
+// negatives; -0 is made +0 first, so equal values get equal keys.
+std::uint32_t ordered_bits(float v) {
+  const auto b = std::bit_cast<std::uint32_t>(v + 0.0f);
+  return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
+}
+
+// Seed order: points with a finite normal by ascending curvature, ties by index - a stable radix
+// sort on the curvature's ordered bits above the point index.
 std::vector<std::uint32_t> seed_order(const Cloud& c) {
-  std::vector<std::uint32_t> order;
-  order.reserve(c.size());
+  std::vector<std::uint64_t> items;
+  items.reserve(c.size());
   for (std::size_t i = 0; i < c.size(); ++i)
     if (is_finite(c.normals[i]) && std::isfinite(c.curvature[i]))
-      order.push_back(static_cast<std::uint32_t>(i));
-  std::stable_sort(order.begin(), order.end(),
-                   [&](auto a, auto b) { return c.curvature[a] < c.curvature[b]; });
+      items.push_back(std::uint64_t(ordered_bits(c.curvature[i])) << 32 | i);
+  cloud::radix_sort(items, 32, 32);
+  std::vector<std::uint32_t> order(items.size());
+  for (std::size_t j = 0; j < items.size(); ++j) order[j] = static_cast<std::uint32_t>(items[j]);
   return order;
 }
 
@@ -107,7 +118,8 @@ Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
   if (all.count.size() != cloud.size() || (all.k < region.k && all.k < cloud.size()))
     throw Error("region growing: the shared neighbour lists do not fit this cloud");
   out.label.assign(cloud.size(), -1);
-  const cloud::Neighbours nb = truncate(all, region.k);
+  cloud::Neighbours cut;  // only when the shared rows are longer than k
+  const cloud::Neighbours& nb = all.k > region.k ? (cut = truncate(all, region.k)) : all;
   const float rad = region.angle_deg * std::numbers::pi_v<float> / 180.0f;
   Grower g{cloud, nb, region, color, std::cos(rad), region.distance * region.distance,
            color.point_threshold * color.point_threshold, out.label, {}};
