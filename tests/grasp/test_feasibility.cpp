@@ -1,11 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numeric>
 
 #include "grasp_helpers.hpp"
 #include "objects.hpp"
 #include "uwgrasp/core/rng.hpp"
 #include "uwgrasp/grasp/feasibility.hpp"
+#include "uwgrasp/grasp/lanes.hpp"
 
 namespace uwgrasp::grasp {
 
@@ -94,7 +96,15 @@ TEST(Feasibility, HierarchyMatchesBruteForceAndCountsAddUp) {
     const Check b = check_brute(pts, g, cand[i]);
     const Check& h = checks[i];
     ASSERT_EQ(is_collision(h.reason), is_collision(b.reason)) << i;
-    if (is_collision(b.reason)) continue;
+    if (is_collision(b.reason)) {
+      // The part named holds a point (the walk and the probe points may name another part than
+      // the brute force's first point does).
+      const Box& part = g.solids[std::size_t(int(h.reason) - int(Reject::collision_left_finger))];
+      const lanes::Frame4 to_gripper(cand[i].rotation.transpose(), cand[i].position);
+      ASSERT_TRUE(std::any_of(pts.begin(), pts.end(), [&](const auto& p) { return part.contains(to_gripper.point(p)); }))
+          << i << " " << reject_name(h.reason);
+      continue;
+    }
     ASSERT_EQ(h.reason, b.reason) << i;
     ASSERT_EQ(h.inliers, b.inliers) << i;
     ASSERT_EQ(h.inliers, closing_points(pts, g, cand[i]).size()) << i;
