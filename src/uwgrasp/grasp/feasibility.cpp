@@ -107,8 +107,8 @@ Reject first_solid(const GripperLanes& g, const V3& p) {
   return Reject::none;
 }
 
-V3 centres(const BvhNode& n) { return {lanes::load(n.cx), lanes::load(n.cy), lanes::load(n.cz)}; }
-V3 halves(const BvhNode& n) { return {lanes::load(n.hx), lanes::load(n.hy), lanes::load(n.hz)}; }
+V3 centres(const BvhNode& n) { return lanes::load(n.cx, n.cy, n.cz); }
+V3 halves(const BvhNode& n) { return lanes::load(n.hx, n.hy, n.hz); }
 
 // Points spread evenly along the Morton order (so over the whole object), tested before any
 // walk. A colliding candidate holds a median 4 % of a barbell's points in its solid parts; 64
@@ -128,7 +128,7 @@ struct Probe {
   }
   Reject test(const GripperLanes& g, const lanes::Frame4& to_gripper) const {
     for (std::size_t k = 0; k < kProbes; k += 4)
-      if (const Reject r = first_solid(g, to_gripper.point(V3{lanes::load(&x[k]), lanes::load(&y[k]), lanes::load(&z[k])}));
+      if (const Reject r = first_solid(g, to_gripper.point(lanes::load(&x[k], &y[k], &z[k])));
           r != Reject::none)
         return r;
     return Reject::none;
@@ -175,7 +175,7 @@ struct Walker {
   }
 
   V3 leaf_points(std::uint32_t k) const {
-    return f.to_gripper.point(V3{lanes::load(&bvh.x[k]), lanes::load(&bvh.y[k]), lanes::load(&bvh.z[k])});
+    return f.to_gripper.point(lanes::load(&bvh.x[k], &bvh.y[k], &bvh.z[k]));
   }
 
   Reject leaf_solids(std::uint32_t leaf) const {

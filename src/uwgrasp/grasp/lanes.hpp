@@ -27,6 +27,9 @@ struct V3 {
   Eigen::Vector3f lane(int k) const { return {x[k], y[k], z[k]}; }
 };
 
+// Four lanes from each of three coordinate arrays (points, node centres or half extents).
+inline V3 load(const float* x, const float* y, const float* z) { return {load(x), load(y), load(z)}; }
+
 // Four boxes as lower and upper corners; or one box broadcast to four lanes.
 struct Box4 {
   V3 lo, hi;

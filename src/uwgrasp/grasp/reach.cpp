@@ -64,15 +64,18 @@ struct Query {
   float s;
   Eigen::Matrix3f Rt;      // L to the candidate's gripper frame
   Eigen::Vector3f lo, hi;  // the swept solid's bounds in L
+  lanes::V3 mid{}, half{};  // the same as centre and half extents, broadcast once for the walk
+
+  void broadcast_bounds() {
+    mid = lanes::V3::splat(0.5f * (lo + hi)), half = lanes::V3::splat(0.5f * (hi - lo));
+  }
 
   // The worst hit under node j of `level`: at_grasp ends the search.
   Hit walk(std::uint32_t level, std::uint32_t j) const {
     const BvhNode& n = bvh.levels[level][j];
-    const lanes::V3 m{lanes::load(n.cx), lanes::load(n.cy), lanes::load(n.cz)};
-    const lanes::V3 h{lanes::load(n.hx), lanes::load(n.hy), lanes::load(n.hz)};
-    const lanes::Box4 box{{m.x - h.x, m.y - h.y, m.z - h.z}, {m.x + h.x, m.y + h.y, m.z + h.z}};
+    const lanes::M4 near = lanes::near(lanes::load(n.cx, n.cy, n.cz), lanes::load(n.hx, n.hy, n.hz), mid, half);
     Hit worst = Hit::none;
-    for (int t = lanes::bits(lanes::overlap(box, lanes::Box4::splat(lo, hi))); t != 0 && worst != Hit::at_grasp; t &= t - 1) {
+    for (int t = lanes::bits(near); t != 0 && worst != Hit::at_grasp; t &= t - 1) {
       const int lane = std::countr_zero(unsigned(t));
       worst = std::max(worst, level == 0 ? leaf(bvh.first(0, j, lane), bvh.count(0, j, lane))
                                          : walk(level - 1, 4 * j + std::uint32_t(lane)));
@@ -152,9 +155,10 @@ Reject reach_check(const Obstacles& o, std::span<const Solid> solids, const Cand
     if (plane == Hit::at_grasp || o.bvh.empty()) return plane;
     Query q{o.bvh, solids[k], c, s, c.rotation.transpose(),
             Eigen::Vector3f::Constant(std::numeric_limits<float>::max()),
-            Eigen::Vector3f::Constant(std::numeric_limits<float>::lowest())};
+            Eigen::Vector3f::Constant(std::numeric_limits<float>::lowest()), {}, {}};
     for (float t : {0.0f, s})
       for (const auto& p : corners(solids[k], c, t)) q.lo = q.lo.cwiseMin(p), q.hi = q.hi.cwiseMax(p);
+    q.broadcast_bounds();
     return std::max(plane, q.walk(o.bvh.top(), 0));
   });
 }
