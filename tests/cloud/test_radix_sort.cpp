@@ -34,7 +34,7 @@ TEST(RadixSort, EqualsStableSortAtAnyThreadCount) {
   struct Field {
     int lo, bits;
   };
-  for (const std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(1000), std::size_t(300000)}) {
+  for (const std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(1000), std::size_t(32769), std::size_t(300000)}) {
     for (const Field f : {Field{32, 5}, Field{32, 30}, Field{32, 32}, Field{20, 44}}) {
       SCOPED_TRACE(std::to_string(n) + " items, " + std::to_string(f.bits) + " bits at " +
                    std::to_string(f.lo));

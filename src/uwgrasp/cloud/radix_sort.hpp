@@ -10,7 +10,8 @@ namespace uwgrasp::cloud {
 // Sorts items on bits [lo, lo + bits) only, in place. Items with equal fields keep their input
 // order, so anything summed in sorted order runs in a fixed order; the result does not depend
 // on the thread count. One parallel pass over the whole array on the top 11 bits of the field,
-// then each bucket sorts on the rest in cache.
+// then each bucket sorts on the rest in cache; up to 32768 items, one thread sorts them all in
+// cache.
 void radix_sort(std::span<std::uint64_t> items, int lo, int bits);
 
 }  // namespace uwgrasp::cloud
