@@ -6,6 +6,8 @@
 #include <random>
 
 #include "uwgrasp/core/error.hpp"
+#include "objects.hpp"
+#include "uwgrasp/grasp/frames.hpp"
 #include "uwgrasp/grasp/occlusion.hpp"
 
 namespace uwgrasp::grasp {
@@ -62,6 +64,61 @@ TEST(Occlusion, DepthMapIsTheDilatedNearestDepth) {
   EXPECT_EQ(m.at(0.05f, -0.02f), m.at_bin(bin(0.05f), bin(-0.02f)));
 }
 
+// range() bounds the seen depths over any rectangle of bins (it may read a few more around it)
+// and is exact for the whole map; brute force over the bins as the oracle.
+TEST(Occlusion, DepthRangeBoundsTheBinsItCovers) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> xy(-0.2f, 0.2f), depth(0.4f, 0.9f);
+  std::vector<Eigen::Vector3f> pts(400);
+  for (auto& p : pts) p = Eigen::Vector3f(xy(rng), xy(rng) * 0.5f, depth(rng));
+  const DepthMap m = make_depth_map(pts, 0.01f);
+  ASSERT_GT(m.width, 8);
+  std::uniform_int_distribution<int> u(m.u0 - 3, m.u0 + m.width + 3), v(m.v0 - 3, m.v0 + m.height + 3);
+  int narrow = 0;
+  for (int q = 0; q < 2000; ++q) {
+    auto [ua, ub] = std::minmax(u(rng), u(rng));
+    auto [va, vb] = std::minmax(v(rng), v(rng));
+    float lo = kInf, hi = -kInf;
+    for (int y = va; y <= vb; ++y)
+      for (int x = ua; x <= ub; ++x)
+        if (const float d = m.at_bin(x, y); d != kInf) lo = std::min(lo, d), hi = std::max(hi, d);
+    const auto [rlo, rhi] = m.range(ua, ub, va, vb);
+    ASSERT_LE(rlo, lo) << ua << " " << ub << " " << va << " " << vb;
+    ASSERT_GE(rhi, hi) << ua << " " << ub << " " << va << " " << vb;
+    narrow += rlo > depth.a() || rhi < depth.b();  // informative: not the whole map's range
+  }
+  EXPECT_GT(narrow, 200);
+  const auto [all_lo, all_hi] = m.range(m.u0, m.u0 + m.width - 1, m.v0, m.v0 + m.height - 1);
+  EXPECT_EQ(all_lo, *std::min_element(m.depth.begin(), m.depth.end()));
+  float far = -kInf;
+  for (const float d : m.depth) far = d == kInf ? far : std::max(far, d);
+  EXPECT_EQ(all_hi, far);
+  EXPECT_EQ(m.range(m.u0 - 9, m.u0 - 5, m.v0, m.v0 + 3), std::make_pair(kInf, -kInf));  // outside
+}
+
+// Clearing whole patches gives every sample's answer: on the barbell's view, 3000 candidates
+// spread over all poses are occluded or not alike with and without it, both answers occurring.
+TEST(Occlusion, PatchClearingMatchesTestingEverySample) {
+  const auto obj = fixtures::render_object(fixtures::Object::barbell, {}, 20000);
+  FrameConfig fc;
+  fc.camera.rpy.y() = obj.camera_pitch;
+  const Frames f = make_frames(fc);
+  const auto level = points_to_level(obj.cloud.points, f);
+  const OcclusionConfig cfg;
+  const DepthMap m = make_depth_map(obj.cloud.points, cfg.resolution);
+  const PartSamples samples = part_samples(make_gripper({}), cfg.spacing);
+  const Pose camera_from_level = f.level_from_camera.inverse();
+  const auto cand = sample_normal(level, SamplerConfig{}, f.body_from_gripper.linear(), 7, 3000);
+  int hidden = 0;
+  for (std::size_t i = 0; i < cand.size(); ++i) {
+    const bool all = occluded(m, samples, cand[i], camera_from_level, cfg, false);
+    ASSERT_EQ(occluded(m, samples, cand[i], camera_from_level, cfg), all) << i;
+    hidden += all;
+  }
+  EXPECT_GT(hidden, 100);
+  EXPECT_LT(hidden, 2900);
+}
+
 TEST(Occlusion, EmptyAndBadMaps) {
   const std::vector<Eigen::Vector3f> behind{Eigen::Vector3f(0, 0, -1)};
   const DepthMap m = make_depth_map(behind, 0.003f);
@@ -81,7 +138,7 @@ TEST(Occlusion, PartsInThePlateShadow) {
   const DepthMap m = make_depth_map(pts, cfg.resolution);
   const Gripper g = small_gripper();  // parts within +-3 mm of the centre along z
   const auto samples = part_samples(g, 0.002f);
-  ASSERT_FALSE(samples.empty());
+  ASSERT_FALSE(samples.patches.empty());
   const Pose I = Pose::Identity();
   EXPECT_TRUE(occluded(m, samples, at(0, 0, 0.512f), I, cfg));    // 9-15 mm behind
   EXPECT_TRUE(occluded(m, samples, at(0.05f, -0.05f, 0.52f), I, cfg));

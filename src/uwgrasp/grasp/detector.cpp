@@ -65,7 +65,7 @@ struct Pool {
 void reject_occluded(const Cloud& object, const Gripper& g, const Frames& f,
                      const OcclusionConfig& cfg, Pool& pool) {
   const DepthMap map = make_depth_map(object.points, cfg.resolution);
-  const std::vector<Eigen::Vector3f> samples = part_samples(g, cfg.spacing);
+  const PartSamples samples = part_samples(g, cfg.spacing);
   const Pose camera_from_level = f.level_from_camera.inverse();
   tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
     if (pool.checks[i].feasible() &&

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "uwgrasp/core/pose.hpp"
@@ -28,18 +29,38 @@ struct DepthMap {
   float resolution = 0;
   int u0 = 0, v0 = 0, width = 0, height = 0;
   std::vector<float> depth;  // +inf where the object was not seen
+  // Level l: the nearest and farthest seen depth per block of 2^l x 2^l bins, up to one block
+  // for the whole map, so that a patch of part samples is cleared with four lookups.
+  struct Level {
+    int width = 0, height = 0;
+    std::vector<float> lo, hi;  // +inf and -inf where nothing was seen
+  };
+  std::vector<Level> levels;
   float at(float x, float y) const;  // +inf outside the map
   float at_bin(int u, int v) const;  // the same by bin: u = floor(x / resolution)
+  // Bounds {nearest, farthest} of the seen depths in bins [ua, ub] x [va, vb] (inclusive, the
+  // same bins as at_bin), possibly over a few more bins around them; {+inf, -inf} when none.
+  std::pair<float, float> range(int ua, int ub, int va, int vb) const;
 };
-
 DepthMap make_depth_map(std::span<const Eigen::Vector3f> camera_points, float resolution);
 
-// Points on the surfaces of the gripper's solid parts, in the gripper frame.
-std::vector<Eigen::Vector3f> part_samples(const Gripper& g, float spacing);
+// Points on the surfaces of the gripper's solid parts in the gripper frame, in compact patches
+// of about 4 x 4 samples with their bounding boxes.
+struct PartSamples {
+  struct Patch {
+    Box bounds;
+    std::uint32_t begin = 0, end = 0;  // into x, y, z
+  };
+  std::vector<float> x, y, z;  // each patch padded to a multiple of four with its last sample
+  std::vector<Patch> patches;
+};
+PartSamples part_samples(const Gripper& g, float spacing);
 
 // True when a part sample of the candidate (pose in L; camera_from_level maps L to C) lies in
-// the object's shadow between tolerance and thickness behind the visible surface.
-bool occluded(const DepthMap& map, std::span<const Eigen::Vector3f> samples, const Candidate& c,
-              const Pose& camera_from_level, const OcclusionConfig& cfg);
+// the object's shadow between tolerance and thickness behind the visible surface. A patch whose
+// depths cannot fall in that band anywhere over the map's depths under it is skipped whole;
+// cull = false tests every sample (the same answer: the oracle in tests).
+bool occluded(const DepthMap& map, const PartSamples& samples, const Candidate& c,
+              const Pose& camera_from_level, const OcclusionConfig& cfg, bool cull = true);
 
 }  // namespace uwgrasp::grasp
