@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -14,21 +15,21 @@
 namespace uwgrasp::grasp {
 
 namespace {
-// Spreads the low 10 bits of v so that two zero bits separate each pair of bits.
-std::uint64_t spread(std::uint64_t v) {
-  v &= 0x3FF;
-  v = (v | (v << 16)) & 0x030000FF;
-  v = (v | (v << 8)) & 0x0300F00F;
-  v = (v | (v << 4)) & 0x030C30C3;
-  v = (v | (v << 2)) & 0x09249249;
-  return v;
+// The low 10 bits of v spread so that two zero bits separate each pair of bits, for every v:
+// three table loads per Morton code instead of three rounds of shifts and masks.
+constexpr std::array<std::uint32_t, 1024> make_spread() {
+  std::array<std::uint32_t, 1024> t{};
+  for (std::uint32_t v = 0; v < 1024; ++v)
+    for (int b = 0; b < 10; ++b) t[v] |= ((v >> b) & 1u) << (3 * b);
+  return t;
 }
+constexpr std::array<std::uint32_t, 1024> kSpread = make_spread();
 
 std::uint64_t morton(const Eigen::Vector3f& p, const Eigen::Vector3f& lo, const Eigen::Vector3f& scale) {
   const Eigen::Vector3f q = ((p - lo).cwiseProduct(scale)).cwiseMax(0.0f).cwiseMin(1023.0f);
-  // Through int: float -> int is one instruction, float -> uint64 is not on x86-64.
-  return spread(std::uint64_t(static_cast<int>(q.x()))) | (spread(std::uint64_t(static_cast<int>(q.y()))) << 1) |
-         (spread(std::uint64_t(static_cast<int>(q.z()))) << 2);
+  return std::uint64_t(kSpread[std::size_t(static_cast<int>(q.x()))]) |
+         (std::uint64_t(kSpread[std::size_t(static_cast<int>(q.y()))]) << 1) |
+         (std::uint64_t(kSpread[std::size_t(static_cast<int>(q.z()))]) << 2);
 }
 
 constexpr float kPad = 1e-5f;  // m

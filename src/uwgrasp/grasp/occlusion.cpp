@@ -139,42 +139,40 @@ void add_patch(PartSamples& out, std::span<const Eigen::Vector3f> patch) {
 // part rarely clears.
 constexpr int kPatch = 4;
 
-// Samples on the faces of box b at about `spacing`, with the cell of kPatch samples a side each
-// is in.
-std::vector<std::pair<Eigen::Vector3i, Eigen::Vector3f>> face_samples(const Box& b, float spacing) {
+// Samples on the faces of box b at about `spacing`, as patches of kPatch x kPatch samples (the
+// last sample along an axis joins the cell before it).
+void add_box(PartSamples& out, const Box& b, float spacing) {
   const Eigen::Vector3f size = b.hi - b.lo;
-  Eigen::Vector3i n;
-  for (int a = 0; a < 3; ++a) n[a] = std::max(1, int(std::ceil(size[a] / spacing)));
-  std::vector<std::pair<Eigen::Vector3i, Eigen::Vector3f>> out;
-  for (int i = 0; i <= n.x(); ++i)
-    for (int j = 0; j <= n.y(); ++j)
-      for (int k = 0; k <= n.z(); ++k) {
-        const bool surface = i == 0 || j == 0 || k == 0 || i == n.x() || j == n.y() || k == n.z();
-        if (!surface) continue;
-        const Eigen::Vector3i cell(std::min(i, n.x() - 1) / kPatch, std::min(j, n.y() - 1) / kPatch,
-                                   std::min(k, n.z() - 1) / kPatch);
-        out.emplace_back(cell, b.lo + size.cwiseProduct(Eigen::Vector3f(float(i) / n.x(), float(j) / n.y(),
-                                                                        float(k) / n.z())));
+  Eigen::Vector3i n, cells;
+  for (int a = 0; a < 3; ++a) {
+    n[a] = std::max(1, int(std::ceil(size[a] / spacing)));
+    cells[a] = (n[a] + kPatch - 1) / kPatch;
+  }
+  // Sample indices [first, last] of cell c along axis a.
+  const auto first = [&](int c) { return c * kPatch; };
+  const auto last = [&](int a, int c) { return c + 1 == cells[a] ? n[a] : (c + 1) * kPatch - 1; };
+  std::vector<Eigen::Vector3f> patch;
+  for (int ci = 0; ci < cells.x(); ++ci)
+    for (int cj = 0; cj < cells.y(); ++cj)
+      for (int ck = 0; ck < cells.z(); ++ck) {
+        patch.clear();
+        for (int i = first(ci); i <= last(0, ci); ++i)
+          for (int j = first(cj); j <= last(1, cj); ++j)
+            for (int k = first(ck); k <= last(2, ck); ++k) {
+              const bool surface = i == 0 || j == 0 || k == 0 || i == n.x() || j == n.y() || k == n.z();
+              if (surface)
+                patch.push_back(b.lo + size.cwiseProduct(Eigen::Vector3f(float(i) / n.x(), float(j) / n.y(),
+                                                                         float(k) / n.z())));
+            }
+        if (!patch.empty()) add_patch(out, patch);
       }
-  return out;
 }
 }  // namespace
 
 PartSamples part_samples(const Gripper& g, float spacing) {
   if (!(spacing > 0.0f)) throw Error("grasp.occlusion.spacing must be positive");
   PartSamples out;
-  for (const Box& b : g.solids) {
-    auto s = face_samples(b, spacing);
-    const auto cell_less = [](const auto& a, const auto& c) {
-      return std::lexicographical_compare(a.first.data(), a.first.data() + 3, c.first.data(), c.first.data() + 3);
-    };
-    std::stable_sort(s.begin(), s.end(), cell_less);
-    std::vector<Eigen::Vector3f> patch;
-    for (std::size_t k = 0; k < s.size(); ++k) {
-      patch.push_back(s[k].second);
-      if (k + 1 == s.size() || s[k + 1].first != s[k].first) add_patch(out, patch), patch.clear();
-    }
-  }
+  for (const Box& b : g.solids) add_box(out, b, spacing);
   return out;
 }
 
