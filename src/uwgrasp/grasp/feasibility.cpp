@@ -32,18 +32,20 @@ struct Near4 {
 };
 
 // A candidate's frame: local = Rt * (world - t), with the world-axis bounds of its boxes in L.
+// Built only for candidates the probe points let through (the probe needs the map alone): the
+// bounds cost 7 % of the check on the voxel barbell when built for every candidate.
 struct LocalFrame {
-  lanes::Frame4 to_gripper;
+  const lanes::Frame4& to_gripper;
   Near4 bounds, closing;               // the whole gripper, the closing region
   std::array<Near4, kParts> solids{};  // each solid part
 };
 
-LocalFrame local_frame(const Gripper& g, const Candidate& c) {
+LocalFrame local_frame(const Gripper& g, const Candidate& c, const lanes::Frame4& to_gripper) {
   const Eigen::Matrix3f abs_r = c.rotation.cwiseAbs();
   const auto near = [&](const Box& b) {
     return Near4{V3::splat(c.rotation * b.centre() + c.position), V3::splat(abs_r * b.half())};
   };
-  LocalFrame f{lanes::Frame4(c.rotation.transpose(), c.position), near(g.bounds), near(g.closing), {}};
+  LocalFrame f{to_gripper, near(g.bounds), near(g.closing), {}};
   for (std::size_t s = 0; s < kParts; ++s) f.solids[s] = near(g.solids[s]);
   return f;
 }
@@ -231,9 +233,10 @@ std::vector<Check> check_candidates(const PointBvh& bvh, const Gripper& g,
   const GripperLanes gl(g);
   const Probe probe(bvh);
   tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
-    const LocalFrame f = local_frame(g, candidates[i]);
-    out[i].reason = probe.test(gl, f.to_gripper);
+    const lanes::Frame4 to_gripper(candidates[i].rotation.transpose(), candidates[i].position);
+    out[i].reason = probe.test(gl, to_gripper);
     if (out[i].reason != Reject::none) return;
+    const LocalFrame f = local_frame(g, candidates[i], to_gripper);
     const Walker w{bvh, gl, f};
     out[i].reason = w.solids(bvh.top(), 0);
     if (out[i].reason != Reject::none) return;
