@@ -1,9 +1,11 @@
 #include "uwgrasp/grasp/detector.hpp"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <string>
 
 #include "uwgrasp/cloud/kdtree.hpp"
@@ -61,11 +63,44 @@ struct Pool {
   }
 };
 
+// The object's depth map and the gripper's part samples for the occlusion check.
+struct Shadow {
+  DepthMap map;
+  PartSamples samples;
+};
+
+// The point BVH and, when the occlusion check is on, its inputs, built side by side: the BVH
+// of a small object is built mostly on one thread, so the map takes the other core (0.1 ms of
+// a 5.8k-point object's 2 ms, 0.7 ms of a 65k-point one's 8). Errors are raised in a fixed
+// order, the BVH's first, whichever thread hit its own first.
+PointBvh build_inputs(const LevelCloud& l, const Cloud& object, const Gripper& g,
+                      const OcclusionConfig& cfg, Shadow& shadow) {
+  PointBvh bvh;
+  std::exception_ptr bvh_error, shadow_error;
+  tbb::parallel_invoke(
+      [&] {
+        try {
+          bvh = build_bvh(l.points);
+        } catch (...) {
+          bvh_error = std::current_exception();
+        }
+      },
+      [&] {
+        try {
+          if (cfg.enabled) shadow = {make_depth_map(object.points, cfg.resolution), part_samples(g, cfg.spacing)};
+        } catch (...) {
+          shadow_error = std::current_exception();
+        }
+      });
+  for (const std::exception_ptr& e : {bvh_error, shadow_error})
+    if (e) std::rethrow_exception(e);
+  return bvh;
+}
+
 // Feasible candidates with a solid part in the object's shadow become `occluded`.
-void reject_occluded(const Cloud& object, const Gripper& g, const Frames& f,
-                     const OcclusionConfig& cfg, Pool& pool) {
-  const DepthMap map = make_depth_map(object.points, cfg.resolution);
-  const PartSamples samples = part_samples(g, cfg.spacing);
+void reject_occluded(const Shadow& shadow, const Frames& f, const OcclusionConfig& cfg, Pool& pool) {
+  const DepthMap& map = shadow.map;
+  const PartSamples& samples = shadow.samples;
   const Pose camera_from_level = f.level_from_camera.inverse();
   tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
     if (pool.checks[i].feasible() &&
@@ -131,8 +166,9 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   const LevelCloud l = to_level(object, out.frames);
   out.max_inliers = max_inliers(cfg.score, g, l, leaf);
   timer.start("sample");  // first, so the stages print in pipeline order
-  timer.start("check");   // the hierarchy is part of the check's cost
-  const PointBvh bvh = build_bvh(l.points);
+  timer.start("check");   // the hierarchy (and the occlusion map beside it) is part of the check's cost
+  Shadow shadow;
+  const PointBvh bvh = build_inputs(l, object, g, cfg.occlusion, shadow);
   Pool pool;
   out.sampler = cfg.sampler.kind;
   if (cfg.sampler.kind == SamplerKind::automatic) {
@@ -146,7 +182,7 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   }
   if (cfg.occlusion.enabled) {
     timer.start("occlusion");
-    reject_occluded(object, g, out.frames, cfg.occlusion, pool);
+    reject_occluded(shadow, out.frames, cfg.occlusion, pool);
   }
   if (cfg.reach.enabled) {
     timer.start("reach");
