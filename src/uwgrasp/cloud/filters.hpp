@@ -24,6 +24,8 @@ struct RangeConfig {
 };
 // Keeps finite points whose distance from the viewpoint lies in [min, max].
 Filtered crop_range(const Cloud& in, const RangeConfig& cfg);
+// The indices crop_range keeps (ascending), without copying the cloud.
+std::vector<std::uint32_t> in_range(const Cloud& in, const RangeConfig& cfg);
 
 // Keeps the points whose mask entry is true (mask.size() == in.size()).
 Filtered keep_if(const Cloud& in, const std::vector<char>& mask);

@@ -10,6 +10,7 @@ namespace {
 // After a filter that kept `kept` (indices into the previous cloud), re-point the map.
 void remap_filtered(std::vector<std::int32_t>& map, const std::vector<std::uint32_t>& kept,
                     std::size_t previous_size) {
+  if (kept.size() == previous_size) return;  // kept is ascending: nothing was dropped
   std::vector<std::int32_t> pos(previous_size, -1);
   for (std::size_t j = 0; j < kept.size(); ++j) pos[kept[j]] = static_cast<std::int32_t>(j);
   for (auto& m : map)
@@ -87,7 +88,9 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
   }
   if (cfg.range.enabled) {
     timer.start("range");
-    apply(crop_range(cur, cfg.range), cur, out.output_of_input);
+    // Usually every point is in range: then the cloud is neither copied nor remapped.
+    const std::vector<std::uint32_t> kept = in_range(cur, cfg.range);
+    if (kept.size() != cur.size()) apply({select(cur, kept), kept}, cur, out.output_of_input);
     require_points(cur, "range");
   }
   out.counts.in_range = cur.size();

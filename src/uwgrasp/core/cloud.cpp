@@ -83,8 +83,4 @@ MeanCovariance mean_covariance(std::span<const Eigen::Vector3f> points,
   return mc;
 }
 
-bool is_finite(const Eigen::Vector3f& p) {
-  return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
-}
-
 }  // namespace uwgrasp

@@ -1,7 +1,9 @@
 #pragma once
 // Cloud: one vector per attribute; an empty vector means the attribute is absent.
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -56,6 +58,11 @@ struct MeanCovariance {
 MeanCovariance mean_covariance(std::span<const Eigen::Vector3f> points,
                                std::span<const std::uint32_t> indices);
 
-bool is_finite(const Eigen::Vector3f& p);
+// Inline and branch-free (& not &&), so that loops over points vectorise: every filter and
+// index calls it once per point.
+inline bool is_finite(const Eigen::Vector3f& p) {
+  constexpr float kMax = std::numeric_limits<float>::max();
+  return (std::abs(p.x()) <= kMax) & (std::abs(p.y()) <= kMax) & (std::abs(p.z()) <= kMax);
+}
 
 }  // namespace uwgrasp
