@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numeric>
 
 #include "grasp_helpers.hpp"
@@ -188,6 +189,15 @@ TEST(Detector, BadInputIsAClearError) {
   GraspConfig a = good;
   a.gripper.max_aperture = -0.05f;
   EXPECT_NE(message(obj.cloud, a).find("gripper.max_aperture"), std::string::npos);
+  // The BVH and the occlusion map are built side by side; with both inputs bad the BVH's error
+  // is the one raised, every time.
+  Cloud holed = obj.cloud;
+  holed.points[700].y() = std::nanf("");
+  GraspConfig r = good;
+  r.occlusion.resolution = 0.0f;
+  EXPECT_NE(message(holed, good).find("point 700 is not finite"), std::string::npos);
+  EXPECT_NE(message(obj.cloud, r).find("grasp.occlusion.resolution"), std::string::npos);
+  for (int k = 0; k < 20; ++k) ASSERT_NE(message(holed, r).find("point 700 is not finite"), std::string::npos) << k;
   EXPECT_EQ(message(obj.cloud, good), "");
 }
 
