@@ -134,9 +134,9 @@ void add_patch(PartSamples& out, std::span<const Eigen::Vector3f> patch) {
   out.patches.push_back(p);
 }
 
-// Samples per patch side: 4 x 4 patches (23 on the default gripper) halved the check's time on
-// the barbell; 2 x 2 patches cost as much to clear as their samples cost to test, one patch per
-// part rarely clears.
+// Samples per patch side: 4 x 4 patches (23 on the default gripper) halved the time of the
+// occlusion tests on the barbell; 2 x 2 patches cost as much to clear as their samples cost to
+// test; one patch per part rarely clears.
 constexpr int kPatch = 4;
 
 // Samples on the faces of box b at about `spacing`, as patches of kPatch x kPatch samples (the
