@@ -76,8 +76,10 @@ TEST(Occlusion, DepthRangeBoundsTheBinsItCovers) {
   std::uniform_int_distribution<int> u(m.u0 - 3, m.u0 + m.width + 3), v(m.v0 - 3, m.v0 + m.height + 3);
   int narrow = 0;
   for (int q = 0; q < 2000; ++q) {
-    auto [ua, ub] = std::minmax(u(rng), u(rng));
-    auto [va, vb] = std::minmax(v(rng), v(rng));
+    // minmax of an initializer list returns values; of two temporaries it would return
+    // references to them.
+    const auto [ua, ub] = std::minmax({u(rng), u(rng)});
+    const auto [va, vb] = std::minmax({v(rng), v(rng)});
     float lo = kInf, hi = -kInf;
     for (int y = va; y <= vb; ++y)
       for (int x = ua; x <= ub; ++x)
