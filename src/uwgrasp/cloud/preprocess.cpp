@@ -1,6 +1,7 @@
 #include "uwgrasp/cloud/preprocess.hpp"
 
 #include <string>
+#include <utility>
 
 #include "uwgrasp/core/error.hpp"
 
@@ -89,8 +90,8 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
   if (cfg.range.enabled) {
     timer.start("range");
     // Usually every point is in range: then the cloud is neither copied nor remapped.
-    const std::vector<std::uint32_t> kept = in_range(cur, cfg.range);
-    if (kept.size() != cur.size()) apply({select(cur, kept), kept}, cur, out.output_of_input);
+    std::vector<std::uint32_t> kept = in_range(cur, cfg.range);
+    if (kept.size() != cur.size()) apply({select(cur, kept), std::move(kept)}, cur, out.output_of_input);
     require_points(cur, "range");
   }
   out.counts.in_range = cur.size();
