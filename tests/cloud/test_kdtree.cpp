@@ -16,6 +16,9 @@ Cloud random_cloud(int n, std::uint64_t seed) {
   make_unorganised(c);
   return c;
 }
+std::vector<Eigen::Vector3f> sub_of(const Cloud& c, std::size_t n) {
+  return {c.points.begin(), c.points.begin() + static_cast<std::ptrdiff_t>(n)};
+}
 }  // namespace
 
 TEST(KdTree, KnnMatchesBruteForce) {
@@ -64,6 +67,36 @@ TEST(KdTree, KnnAllIsIndependentOfThreadsAndFindsSelfFirst) {
     ASSERT_EQ(nb.count[i], 8u);
     EXPECT_EQ(nb.sq_dists[i * 8], 0.0f);
   }
+}
+
+// Oracle: a fresh search over the subset alone. Subsets from nearly all points to a handful, so
+// most rows lose neighbours to the removal and are searched again (some more than once).
+TEST(KdTree, RestrictedListsMatchASearchOverTheSubset) {
+  const Cloud c = random_cloud(4000, 5);
+  const KdTree tree(c.points);
+  const Neighbours all = knn_all(tree, c.points, 12);
+  Rng r(6);
+  for (double share : {0.97, 0.5, 0.05, 0.002}) {
+    std::vector<std::uint32_t> kept;
+    Cloud sub;
+    for (std::uint32_t i = 0; i < c.size(); ++i)
+      if (r.uniform() < share) kept.push_back(i), sub.points.push_back(c.points[i]);
+    for (std::size_t k : {std::size_t{10}, std::size_t{30}}) {
+      const Neighbours got = restrict_neighbours(tree, all, kept, k);
+      const KdTree sub_tree(sub.points);
+      const Neighbours ref = knn_all(sub_tree, sub.points, std::min(k, sub.size()));
+      ASSERT_EQ(got.k, ref.k) << share;
+      for (std::size_t j = 0; j < kept.size(); ++j) {
+        ASSERT_EQ(got.count[j], ref.count[j]) << "share " << share << " row " << j;
+        for (std::size_t m = 0; m < got.count[j]; ++m) {
+          EXPECT_EQ(got.dists_of(j)[m], ref.dists_of(j)[m]) << "share " << share << " row " << j;
+          EXPECT_FLOAT_EQ((sub.points[got.of(j)[m]] - sub.points[j]).squaredNorm(), got.dists_of(j)[m]);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(restrict_neighbours(tree, all, {}, 10).count.size(), 0u);
+  EXPECT_THROW(restrict_neighbours(tree, knn_all(tree, sub_of(c, 10), 3), {}, 3), Error);
 }
 
 TEST(KdTree, DegenerateInputs) {

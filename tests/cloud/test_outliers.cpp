@@ -5,6 +5,7 @@
 #include "shapes.hpp"
 #include "uwgrasp/cloud/filters.hpp"
 #include "uwgrasp/cloud/outliers.hpp"
+#include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/pcd.hpp"
 
 namespace uwgrasp::cloud {
@@ -29,6 +30,10 @@ TEST(Outliers, SameKeptPointsAsPclOnARealScan) {
     const auto ref = pcl_sor(c, int(k), 1.0);
     EXPECT_EQ(ours.indices, ref) << "k = " << k;
     EXPECT_LT(ours.indices.size(), c.size());  // the thesis's mu + sigma removes something
+    // From longer lists found beforehand (as preprocess shares them with the normals).
+    const KdTree tree(c.points);
+    EXPECT_EQ(remove_outliers(c, {true, k, 1.0}, knn_all(tree, c.points, 30)).indices, ref);
+    EXPECT_THROW(remove_outliers(c, {true, k, 1.0}, knn_all(tree, c.points, k)), Error);
   }
 }
 

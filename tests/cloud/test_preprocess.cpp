@@ -48,6 +48,37 @@ TEST(Preprocess, RemovesTheFloorAndKeepsTheBox) {
     EXPECT_GT(t.ms(s) + 1e-9, 0.0) << s;
 }
 
+// Outliers and normals share one search: their results must be those of the two stages run on
+// their own. Stray points 1-2 cm off the box are removed as outliers while they sit in the box
+// points' lists, so those lists are completed by the wider search. The grids are jittered: on a
+// regular grid equal distances tie at the k-th place, and either search may take either point.
+TEST(Preprocess, SharedSearchGivesWhatTheStagesGiveAlone) {
+  Cloud c = floor_scene();
+  Rng r(3);
+  for (auto& p : c.points) p += 1e-4f * Eigen::Vector3f(r.uniform(), r.uniform(), r.uniform());
+  for (int i = 0; i < 40; ++i)
+    c.points.emplace_back(0.06f + 0.01f * r.uniform(), 1.4f + 0.09f * r.uniform(), 1.95f + 0.1f * r.uniform());
+  make_unorganised(c);
+  StageTimer t;
+  const Preprocessed shared = preprocess(c, {}, 1, t, 30);
+  PreprocessConfig before_outliers;
+  before_outliers.outliers.enabled = false;
+  const Cloud seen = preprocess(c, before_outliers, 1, t).cloud;
+  const Filtered alone = remove_outliers(seen, {});
+  ASSERT_LT(alone.cloud.size(), seen.size());
+  ASSERT_EQ(shared.cloud.points, alone.cloud.points);
+  Cloud ref = alone.cloud;
+  const KdTree tree(ref.points);
+  const Neighbours nb = knn_all(tree, ref.points, 30);
+  compute_normals(ref, {}, nb);
+  ASSERT_EQ(shared.neighbours.k, 30u);
+  EXPECT_EQ(shared.neighbours.indices, nb.indices);
+  EXPECT_EQ(shared.neighbours.sq_dists, nb.sq_dists);
+  // The same lists in the same order give bit-identical normals and curvature.
+  EXPECT_EQ(shared.cloud.normals, ref.normals);
+  EXPECT_EQ(shared.cloud.curvature, ref.curvature);
+}
+
 TEST(Preprocess, FewerPointsLeftThanTheNormalNeighbourhood) {
   // Five points above a floor: fewer than normals.k survive the plane stage.
   Cloud c = test::plane_grid(60, 1.0f, 2.0f);

@@ -46,6 +46,8 @@ KdTree::~KdTree() = default;
 
 std::size_t KdTree::size() const { return impl_->adaptor.pts.size(); }
 
+std::span<const Eigen::Vector3f> KdTree::points() const { return impl_->adaptor.pts; }
+
 std::size_t KdTree::knn(const Eigen::Vector3f& q, std::size_t k, std::uint32_t* indices,
                         float* sq_dists) const {
   if (k == 0 || size() == 0) return 0;
@@ -70,6 +72,54 @@ Neighbours knn_all(const KdTree& tree, std::span<const Eigen::Vector3f> queries,
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       nb.count[i] = static_cast<std::uint32_t>(
           tree.knn(queries[i], k, &nb.indices[i * k], &nb.sq_dists[i * k]));
+    }
+  });
+  return nb;
+}
+
+namespace {
+// Appends the kept entries of one nearest-first list (mapped to subset indices) until k are held.
+std::size_t take_kept(std::span<const std::uint32_t> idx, std::span<const float> d2,
+                      const std::vector<std::int32_t>& pos, std::size_t k, std::uint32_t* out_idx,
+                      float* out_d2) {
+  std::size_t c = 0;
+  for (std::size_t m = 0; m < idx.size() && c < k; ++m) {
+    const std::int32_t p = pos[idx[m]];
+    if (p < 0) continue;
+    out_idx[c] = static_cast<std::uint32_t>(p);
+    out_d2[c++] = d2[m];
+  }
+  return c;
+}
+}  // namespace
+
+Neighbours restrict_neighbours(const KdTree& tree, const Neighbours& all,
+                               std::span<const std::uint32_t> kept, std::size_t k) {
+  const auto pts = tree.points();
+  if (all.count.size() != pts.size()) throw Error("restrict_neighbours: lists do not fit the tree");
+  std::vector<std::int32_t> pos(pts.size(), -1);
+  for (std::size_t j = 0; j < kept.size(); ++j) pos[kept[j]] = static_cast<std::int32_t>(j);
+  Neighbours nb;
+  nb.k = std::min(k, kept.size());
+  nb.indices.resize(kept.size() * nb.k);
+  nb.sq_dists.resize(kept.size() * nb.k);
+  nb.count.resize(kept.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept.size(), 1024), [&](const auto& r) {
+    std::vector<std::uint32_t> idx;
+    std::vector<float> d2;
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      std::uint32_t* out_idx = nb.indices.data() + j * nb.k;
+      float* out_d2 = nb.sq_dists.data() + j * nb.k;
+      std::size_t seen = all.count[kept[j]];
+      std::size_t c = take_kept(all.of(kept[j]), all.dists_of(kept[j]), pos, nb.k, out_idx, out_d2);
+      // A row that lost points to the removal: its nearest 2x, 4x, ... until k kept ones are in.
+      while (c < nb.k && seen < pts.size()) {
+        idx.resize(std::min(std::max(2 * seen, 2 * nb.k), pts.size()));
+        d2.resize(idx.size());
+        seen = tree.knn(pts[kept[j]], idx.size(), idx.data(), d2.data());
+        c = take_kept({idx.data(), seen}, {d2.data(), seen}, pos, nb.k, out_idx, out_d2);
+      }
+      nb.count[j] = static_cast<std::uint32_t>(c);
     }
   });
   return nb;

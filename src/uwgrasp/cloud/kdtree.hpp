@@ -19,6 +19,7 @@ class KdTree {
   KdTree& operator=(const KdTree&) = delete;
 
   std::size_t size() const;
+  std::span<const Eigen::Vector3f> points() const;
   // The k nearest points to q, nearest first; returns how many were found (< k only when the
   // tree has fewer points). Distances are squared.
   std::size_t knn(const Eigen::Vector3f& q, std::size_t k, std::uint32_t* indices,
@@ -43,5 +44,13 @@ struct Neighbours {
   std::span<const float> dists_of(std::size_t i) const { return {&sq_dists[i * k], count[i]}; }
 };
 Neighbours knn_all(const KdTree& tree, std::span<const Eigen::Vector3f> queries, std::size_t k);
+
+// The k nearest neighbours among a subset of the tree's points, for each point of the subset,
+// from lists already found over all of them: `all` = knn_all(tree, tree.points(), K), and `kept`
+// the subset's indices in the tree (ascending). Row j holds indices into `kept`. Removed points
+// are skipped; a row they leave short of k is searched again, wider, so the lists are exact:
+// the same distances as knn_all over the subset alone (k is capped at kept.size()).
+Neighbours restrict_neighbours(const KdTree& tree, const Neighbours& all,
+                               std::span<const std::uint32_t> kept, std::size_t k);
 
 }  // namespace uwgrasp::cloud

@@ -1,6 +1,7 @@
 #pragma once
 // Statistical outlier removal (thesis 4.1.3, Rusu et al. 2008).
 #include "uwgrasp/cloud/filters.hpp"
+#include "uwgrasp/cloud/kdtree.hpp"
 
 namespace uwgrasp::cloud {
 
@@ -14,6 +15,9 @@ struct OutlierConfig {
 // where mu and sigma are the mean and (sample) standard deviation of that distance over the
 // cloud. Points must be finite. A cloud with <= k points is returned unchanged.
 Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg);
+// The same from neighbour lists already found for this cloud (knn_all over its own points with
+// nb.k >= cfg.k + 1, each list holding the point itself first): the same points are removed.
+Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg, const Neighbours& nb);
 
 // The per-point mean neighbour distances (exposed for tests and diagnostics).
 std::vector<float> mean_neighbour_distances(const Cloud& in, std::uint32_t k);

@@ -61,6 +61,24 @@ void normals_stage(Cloud& cur, const NormalConfig& cfg, std::size_t share_k, Pre
   compute_normals(cur, cfg, out.neighbours);
 }
 
+// Outlier removal (4.1.3) and the normals (4.2.1) from one k-nearest search: the normals' lists
+// are the outlier search's rows without the removed points (restrict_neighbours), so the cloud
+// is searched once instead of twice - the search is most of both stages.
+void outliers_then_normals(Cloud& cur, const PreprocessConfig& cfg, std::size_t share_k,
+                           Preprocessed& out, StageTimer& timer) {
+  const std::size_t normal_k = std::max<std::size_t>(cfg.normals.k, share_k);
+  const KdTree tree(cur.points);
+  const Neighbours all = knn_all(
+      tree, cur.points,
+      std::min(std::max(normal_k, std::size_t{cfg.outliers.k} + 1), cur.size()));
+  Filtered f = remove_outliers(cur, cfg.outliers, all);
+  out.counts.after_outliers = f.cloud.size();
+  timer.start("normals");
+  out.neighbours = restrict_neighbours(tree, all, f.indices, normal_k);
+  apply(std::move(f), cur, out.output_of_input);
+  compute_normals(cur, cfg.normals, out.neighbours);
+}
+
 void require_points(const Cloud& c, const char* stage) {
   if (c.empty()) throw Error(std::string("preprocess: no points left after the ") + stage +
                              " stage");
@@ -105,13 +123,20 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
     timer.start("plane");
     remove_plane(cur, cfg, seed, out);
   }
-  if (cfg.outliers.enabled) {
-    timer.start("outliers");
-    apply(remove_outliers(cur, cfg.outliers), cur, out.output_of_input);
+  const bool shared = cfg.outliers.enabled && cfg.outliers.k > 0 && cur.size() > cfg.outliers.k &&
+                      cfg.normals.radius <= 0.0f;
+  if (shared) {
+    timer.start("outliers");  // the shared search is timed here
+    outliers_then_normals(cur, cfg, share_k, out, timer);
+  } else {
+    if (cfg.outliers.enabled) {
+      timer.start("outliers");
+      apply(remove_outliers(cur, cfg.outliers), cur, out.output_of_input);
+    }
+    out.counts.after_outliers = cur.size();
+    timer.start("normals");
+    normals_stage(cur, cfg.normals, share_k, out);
   }
-  out.counts.after_outliers = cur.size();
-  timer.start("normals");
-  normals_stage(cur, cfg.normals, share_k, out);
   timer.stop();
   out.counts.output = cur.size();
   out.cloud = std::move(cur);
