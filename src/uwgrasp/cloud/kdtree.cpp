@@ -112,9 +112,10 @@ Neighbours restrict_neighbours(const KdTree& tree, const Neighbours& all,
       float* out_d2 = nb.sq_dists.data() + j * nb.k;
       std::size_t seen = all.count[kept[j]];
       std::size_t c = take_kept(all.of(kept[j]), all.dists_of(kept[j]), pos, nb.k, out_idx, out_d2);
-      // A row that lost points to the removal: its nearest 2x, 4x, ... until k kept ones are in.
-      while (c < nb.k && seen < pts.size()) {
-        idx.resize(std::min(std::max(2 * seen, 2 * nb.k), pts.size()));
+      // A row that lost points to the removal: search again for twice as many more as it lost
+      // (the next ones may be removed too), then for twice as many, until k kept ones are in.
+      for (bool first = true; c < nb.k && seen < pts.size(); first = false) {
+        idx.resize(std::min(first ? seen + 2 * (nb.k - c) + 2 : 2 * seen, pts.size()));
         d2.resize(idx.size());
         seen = tree.knn(pts[kept[j]], idx.size(), idx.data(), d2.data());
         c = take_kept({idx.data(), seen}, {d2.data(), seen}, pos, nb.k, out_idx, out_d2);
