@@ -86,7 +86,8 @@ TEST(KdTree, RestrictedListsMatchASearchOverTheSubset) {
     Cloud sub;
     for (std::uint32_t i = 0; i < c.size(); ++i) {
       const bool in_ball = std::find(ball.begin(), ball.end(), i) != ball.end();
-      if (share < 0 ? !in_ball || i == 0 : r.uniform() < share) kept.push_back(i), sub.points.push_back(c.points[i]);
+      if (share < 0 ? !in_ball || i == 0 : r.uniform() < share)
+        kept.push_back(i), sub.points.push_back(c.points[i]);
     }
     for (std::size_t k : {std::size_t{10}, std::size_t{30}}) {
       const Neighbours got = restrict_neighbours(tree, all, kept, k);
@@ -97,7 +98,8 @@ TEST(KdTree, RestrictedListsMatchASearchOverTheSubset) {
         ASSERT_EQ(got.count[j], ref.count[j]) << "share " << share << " row " << j;
         for (std::size_t m = 0; m < got.count[j]; ++m) {
           EXPECT_EQ(got.dists_of(j)[m], ref.dists_of(j)[m]) << "share " << share << " row " << j;
-          EXPECT_FLOAT_EQ((sub.points[got.of(j)[m]] - sub.points[j]).squaredNorm(), got.dists_of(j)[m]);
+          EXPECT_FLOAT_EQ((sub.points[got.of(j)[m]] - sub.points[j]).squaredNorm(),
+                          got.dists_of(j)[m]);
         }
       }
     }

@@ -57,7 +57,8 @@ TEST(Preprocess, SharedSearchGivesWhatTheStagesGiveAlone) {
   Rng r(3);
   for (auto& p : c.points) p += 1e-4f * Eigen::Vector3f(r.uniform(), r.uniform(), r.uniform());
   for (int i = 0; i < 40; ++i)
-    c.points.emplace_back(0.06f + 0.01f * r.uniform(), 1.4f + 0.09f * r.uniform(), 1.95f + 0.1f * r.uniform());
+    c.points.emplace_back(0.06f + 0.01f * r.uniform(), 1.4f + 0.09f * r.uniform(),
+                          1.95f + 0.1f * r.uniform());
   make_unorganised(c);
   StageTimer t;
   const Preprocessed shared = preprocess(c, {}, 1, t, 30);

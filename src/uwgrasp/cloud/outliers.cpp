@@ -17,7 +17,9 @@ float mean_after_first(std::span<const float> d2) {
   return d2.size() > 1 ? static_cast<float>(sum / static_cast<double>(d2.size() - 1)) : 0.0f;
 }
 
-bool keeps_all(const Cloud& in, const OutlierConfig& cfg) { return in.size() <= cfg.k || cfg.k == 0; }
+bool keeps_all(const Cloud& in, const OutlierConfig& cfg) {
+  return in.size() <= cfg.k || cfg.k == 0;
+}
 
 Filtered unchanged(const Cloud& in) {
   Filtered all{in, {}};
@@ -69,8 +71,10 @@ Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg, const Neighb
     throw Error("outliers: the shared neighbour lists do not fit this cloud");
   std::vector<float> mean(in.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.size(), 1024), [&](const auto& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      mean[i] = mean_after_first(nb.dists_of(i).first(std::min<std::size_t>(nb.count[i], cfg.k + 1)));
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::size_t n = std::min<std::size_t>(nb.count[i], cfg.k + 1);
+      mean[i] = mean_after_first(nb.dists_of(i).first(n));
+    }
   });
   return remove_above_threshold(in, cfg, mean);
 }

@@ -79,6 +79,25 @@ void outliers_then_normals(Cloud& cur, const PreprocessConfig& cfg, std::size_t 
   compute_normals(cur, cfg.normals, out.neighbours);
 }
 
+// The outlier stage (if enabled), then the normals: one shared search when both use k nearest
+// neighbours and the outlier stage has more than k points to judge.
+void outliers_and_normals(Cloud& cur, const PreprocessConfig& cfg, std::size_t share_k,
+                          Preprocessed& out, StageTimer& timer) {
+  if (cfg.outliers.enabled && cfg.outliers.k > 0 && cur.size() > cfg.outliers.k &&
+      cfg.normals.radius <= 0.0f) {
+    timer.start("outliers");  // the shared search is timed here
+    outliers_then_normals(cur, cfg, share_k, out, timer);
+    return;
+  }
+  if (cfg.outliers.enabled) {
+    timer.start("outliers");
+    apply(remove_outliers(cur, cfg.outliers), cur, out.output_of_input);
+  }
+  out.counts.after_outliers = cur.size();
+  timer.start("normals");
+  normals_stage(cur, cfg.normals, share_k, out);
+}
+
 void require_points(const Cloud& c, const char* stage) {
   if (c.empty()) throw Error(std::string("preprocess: no points left after the ") + stage +
                              " stage");
@@ -123,20 +142,7 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
     timer.start("plane");
     remove_plane(cur, cfg, seed, out);
   }
-  const bool shared = cfg.outliers.enabled && cfg.outliers.k > 0 && cur.size() > cfg.outliers.k &&
-                      cfg.normals.radius <= 0.0f;
-  if (shared) {
-    timer.start("outliers");  // the shared search is timed here
-    outliers_then_normals(cur, cfg, share_k, out, timer);
-  } else {
-    if (cfg.outliers.enabled) {
-      timer.start("outliers");
-      apply(remove_outliers(cur, cfg.outliers), cur, out.output_of_input);
-    }
-    out.counts.after_outliers = cur.size();
-    timer.start("normals");
-    normals_stage(cur, cfg.normals, share_k, out);
-  }
+  outliers_and_normals(cur, cfg, share_k, out, timer);
   timer.stop();
   out.counts.output = cur.size();
   out.cloud = std::move(cur);
