@@ -197,7 +197,8 @@ TEST(Detector, BadInputIsAClearError) {
   r.occlusion.resolution = 0.0f;
   EXPECT_NE(message(holed, good).find("point 700 is not finite"), std::string::npos);
   EXPECT_NE(message(obj.cloud, r).find("grasp.occlusion.resolution"), std::string::npos);
-  for (int k = 0; k < 20; ++k) ASSERT_NE(message(holed, r).find("point 700 is not finite"), std::string::npos) << k;
+  for (int k = 0; k < 20; ++k)
+    ASSERT_NE(message(holed, r).find("point 700 is not finite"), std::string::npos) << k;
   EXPECT_EQ(message(obj.cloud, good), "");
 }
 

@@ -128,7 +128,8 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
     timer.start("range");
     // Usually every point is in range: then the cloud is neither copied nor remapped.
     std::vector<std::uint32_t> kept = in_range(cur, cfg.range);
-    if (kept.size() != cur.size()) apply({select(cur, kept), std::move(kept)}, cur, out.output_of_input);
+    if (kept.size() != cur.size())
+      apply({select(cur, kept), std::move(kept)}, cur, out.output_of_input);
     require_points(cur, "range");
   }
   out.counts.in_range = cur.size();
