@@ -52,6 +52,8 @@ float value_noise(float px, float py) {
 }  // namespace
 
 World::Impl::~Impl() {
+  for (RTCScene s : part_scenes)
+    if (s != nullptr) rtcReleaseScene(s);
   if (rtc != nullptr) rtcReleaseScene(rtc);
   for (RTCGeometry g : geometries) rtcReleaseGeometry(g);
   if (device != nullptr) rtcReleaseDevice(device);
@@ -69,21 +71,45 @@ World::World(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   if (w.device == nullptr) throw Error("sim: cannot create an Embree device");
   w.rtc = rtcNewScene(w.device);
   rtcSetSceneBuildQuality(w.rtc, RTC_BUILD_QUALITY_HIGH);
-  const auto add = [&](const Mesh& m, const Surface& s) {
+  const auto add = [&](Mesh m, const Surface& s, GeometryOwner owner) {
     RTCGeometry g = new_mesh(w.device, m);
     w.geometries.push_back(g);
     const unsigned id = rtcAttachGeometry(w.rtc, g);
-    if (w.surfaces.size() <= id) w.surfaces.resize(id + 1);
+    if (w.surfaces.size() <= id) {
+      w.surfaces.resize(id + 1), w.owners.resize(id + 1), w.meshes.resize(id + 1);
+      w.part_scenes.resize(id + 1, nullptr);
+    }
     w.surfaces[id] = s;
+    w.owners[id] = owner;
+    if (owner.object >= 0 &&
+        scene.objects[std::size_t(owner.object)].parts[std::size_t(owner.part)].shape.kind == ShapeKind::mesh) {
+      w.part_scenes[id] = rtcNewScene(w.device);
+      rtcAttachGeometryByID(w.part_scenes[id], g, id);
+      rtcCommitScene(w.part_scenes[id]);
+    }
     w.triangles += m.triangles.size();
+    w.meshes[id] = std::move(m);
   };
   if (scene.seafloor.enabled) {
     Mesh floor = make_plane(scene.seafloor.size, scene.seafloor.size);
-    add(floor, {albedo(scene.seafloor.color), float(scene.seafloor.texture), kLabelSeafloor});
+    add(std::move(floor), {albedo(scene.seafloor.color), float(scene.seafloor.texture), kLabelSeafloor}, {});
   }
-  for (std::size_t i = 0; i < scene.objects.size(); ++i)
-    add(object_mesh(scene.objects[i]),
-        {albedo(scene.objects[i].color), 0.08f, static_cast<std::uint16_t>(kLabelFirstObject + i)});
+  // One geometry per part: each is closed on its own, which the inside tests of query.hpp need
+  // (a union of overlapping parts is not, e.g. the cross's bars meet in coincident faces).
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    const Surface surface{albedo(o.color), 0.08f, static_cast<std::uint16_t>(kLabelFirstObject + i)};
+    for (std::size_t p = 0; p < o.parts.size(); ++p) {
+      Mesh m;
+      try {
+        m = part_mesh(o.parts[p]);
+      } catch (const Error& e) {
+        throw Error("object " + o.name + " part " + std::to_string(p) + ": " + e.what());
+      }
+      transform(m, o.pose);
+      add(std::move(m), surface, {static_cast<int>(i), static_cast<int>(p)});
+    }
+  }
   rtcCommitScene(w.rtc);
   if (rtcGetDeviceError(w.device) != RTC_ERROR_NONE) throw Error("sim: Embree failed to build the scene");
 }

@@ -16,11 +16,24 @@ struct Surface {
   std::uint16_t label = kLabelWater;
 };
 
+// What an Embree geometry is: one part of one object (each part is a closed surface of its own,
+// so inside tests and crossings are per part), or the seafloor (object -1).
+struct GeometryOwner {
+  int object = -1;
+  int part = -1;
+};
+
 struct World::Impl {
   Scene scene;
   RTCDevice device = nullptr;
   RTCScene rtc = nullptr;
   std::vector<Surface> surfaces;  // by Embree geometry id
+  std::vector<GeometryOwner> owners;  // by Embree geometry id
+  std::vector<Mesh> meshes;           // by Embree geometry id, in W (for the queries of query.hpp)
+  // By geometry id: a scene holding that mesh part alone, for its inside test (query.hpp), so
+  // crossings of other parts - coincident faces where parts meet - cannot hide its own; null
+  // for primitives and the seafloor.
+  std::vector<RTCScene> part_scenes;
   std::vector<RTCGeometry> geometries;  // retained, to attach to per-frame scenes with snow
   std::size_t triangles = 0;
   ~Impl();
