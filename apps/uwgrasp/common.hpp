@@ -49,6 +49,7 @@ void add_config_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
 void add_approach_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_demo_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
+void add_evaluate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_simulate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 // Also records the command line for its report.
 void add_experiments_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners,

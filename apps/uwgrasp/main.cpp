@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   add_demo_command(app, runners);
   add_detect_command(app, runners);
   add_simulate_command(app, runners);
+  add_evaluate_command(app, runners);
   add_experiments_command(app, runners, argc, argv);
   add_approach_command(app, runners);
   add_segment_command(app, runners);

@@ -75,27 +75,29 @@ io::Config object_config(const Simulation& s, const sim::Frame& f, std::size_t i
   return cfg;
 }
 
+viz::Wire gripper_wire(const Pose& T, const grasp::Gripper& g, bool body) {
+  const Eigen::Isometry3f Tf = T.cast<float>();
+  viz::Wire w;
+  for (int part = 0; part < (body ? grasp::kParts : grasp::kParts - 1); ++part) {
+    const auto& box = g.solids[static_cast<std::size_t>(part)];
+    const auto corner = [&](int k) {
+      return Eigen::Vector3f((k & 1) ? box.hi.x() : box.lo.x(), (k & 2) ? box.hi.y() : box.lo.y(),
+                             (k & 4) ? box.hi.z() : box.lo.z());
+    };
+    for (int a = 0; a < 8; ++a)
+      for (int bit = 0; bit < 3; ++bit)
+        if (const int b = a | (1 << bit); b != a) w.segments.push_back({Tf * corner(a), Tf * corner(b)});
+  }
+  return w;
+}
+
 std::vector<viz::Wire> grasp_wires(const std::vector<grasp::Grasp>& grasps, const grasp::Frames& f,
                                    const grasp::GripperConfig& gripper, bool body) {
   const grasp::Gripper g = grasp::make_gripper(gripper);
   std::vector<viz::Wire> out;
   for (const auto& gr : grasps) {
-    const Eigen::Isometry3f T = grasp::camera_from_gripper(gr, f).cast<float>();
-    viz::Wire w;
+    viz::Wire w = gripper_wire(grasp::camera_from_gripper(gr, f), g, body);
     w.value = gr.scores.total;
-    for (int part = 0; part < (body ? grasp::kParts : grasp::kParts - 1); ++part) {
-      const auto& box = g.solids[static_cast<std::size_t>(part)];
-      for (int a = 0; a < 8; ++a)
-        for (int bit = 0; bit < 3; ++bit) {
-          const int b = a | (1 << bit);
-          if (b == a) continue;
-          const auto corner = [&](int k) {
-            return Eigen::Vector3f((k & 1) ? box.hi.x() : box.lo.x(), (k & 2) ? box.hi.y() : box.lo.y(),
-                                   (k & 4) ? box.hi.z() : box.lo.z());
-          };
-          w.segments.push_back({T * corner(a), T * corner(b)});
-        }
-    }
     out.push_back(std::move(w));
   }
   return out;

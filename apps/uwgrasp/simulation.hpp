@@ -47,8 +47,11 @@ Eigen::Vector3d visible_centroid(const sim::Frame& f, const Simulation& s, std::
 io::Config object_config(const Simulation& s, const sim::Frame& f, std::size_t i,
                          const std::vector<std::string>& sets, std::uint64_t seed);
 
-// Gripper wireframes (fingers, palm and, with `body`, the body behind the palm) of ranked grasps
-// in the camera frame, valued by score.
+// The wireframe of a gripper (fingers, palm and, with `body`, the body behind the palm) at pose
+// T (gripper frame in the picture's frame).
+viz::Wire gripper_wire(const Pose& T, const grasp::Gripper& g, bool body = true);
+
+// Gripper wireframes of ranked grasps in the camera frame, valued by score.
 std::vector<viz::Wire> grasp_wires(const std::vector<grasp::Grasp>& grasps, const grasp::Frames& f,
                                    const grasp::GripperConfig& gripper, bool body = true);
 

@@ -57,6 +57,11 @@ Gripper make_gripper(const GripperConfig& c) {
   return g;
 }
 
+const char* part_name(Part p) {
+  static const char* names[kParts] = {"left_finger", "right_finger", "palm", "body"};
+  return names[static_cast<int>(p)];
+}
+
 float max_grasp_width(const Gripper& g) {
   return g.config.max_aperture - 2.0f * g.config.clearance;
 }

@@ -42,6 +42,7 @@ struct Box {
 // The solid parts, in the order the collision check reports them.
 enum class Part { left_finger, right_finger, palm, body };
 inline constexpr int kParts = 4;
+const char* part_name(Part p);  // "left_finger", "right_finger", "palm", "body"
 
 struct Gripper {
   GripperConfig config;

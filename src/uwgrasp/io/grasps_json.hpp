@@ -33,4 +33,22 @@ struct GraspRecord {
 GraspRecord read_grasp(const std::string& path, std::size_t rank, const std::string& object,
                        const std::vector<std::string>& sets = {});
 
+// Every grasp of a grasps.json from any detector (`evaluate`): the documented fields are read,
+// others ignored. Per grasp: position, orientation_xyzw (a unit quaternion) and score are
+// required. The gripper comes from config.grasp.gripper when the file has it (validated like
+// any config), else the defaults. `object` picks a demo file's object (required there).
+struct GraspList {
+  std::string object;               // the demo object's name, or ""
+  std::string frame = "camera_optical";  // or "world"
+  grasp::GripperConfig gripper;
+  bool gripper_from_file = false;
+  struct Entry {
+    std::size_t rank = 0;  // as written, or the position in the file (1-based)
+    double score = 0.0;
+    Pose pose = Pose::Identity();  // T_FG in `frame`
+  };
+  std::vector<Entry> grasps;  // best score first, ties by rank
+};
+GraspList read_grasp_list(const std::string& path, const std::string& object);
+
 }  // namespace uwgrasp::io

@@ -44,6 +44,14 @@ struct TruthInfo {
   sim::NoiseConfig noise;
 };
 std::string truth_yaml(const sim::Scene& scene, const TruthInfo& info);
+
+// truth.yaml read back (`evaluate`): the scene and the camera that saw it. Throws Error naming
+// the file and key for a missing or malformed camera block and for a mesh file that is missing.
+struct Truth {
+  sim::Scene scene;
+  TruthInfo info;
+};
+Truth load_truth(const std::string& path);
 // Stereo calibration: both cameras' K (no distortion: the rectified simulated pair), the right
 // camera's rotation R and translation T from the left (OpenCV's stereoCalibrate convention).
 std::string stereo_yaml(const sim::StereoFrame& s);

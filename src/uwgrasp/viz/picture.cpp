@@ -102,9 +102,12 @@ void draw_wires(cv::Mat& img, std::span<const Wire> wires, const Camera& cam, co
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   // Best last, so it is drawn on top.
   std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return wires[a].value < wires[b].value; });
+  bool valued = false;
   for (const auto i : order) {
     const double t = hi > lo ? (wires[i].value - lo) / (hi - lo) : 1.0;
-    const cv::Vec3b c = value_colour(t);
+    const std::optional<Rgb8>& fixed = wires[i].colour;
+    valued |= !fixed;
+    const cv::Vec3b c = fixed ? cv::Vec3b(fixed->b, fixed->g, fixed->r) : value_colour(t);
     for (const auto& s : wires[i].segments) {
       const Eigen::Vector3f a = cam.project(s[0]), b = cam.project(s[1]);
       if (a.z() <= 0 || b.z() <= 0) continue;
@@ -112,7 +115,17 @@ void draw_wires(cv::Mat& img, std::span<const Wire> wires, const Camera& cam, co
                wires[i].thickness, cv::LINE_AA);
     }
   }
-  draw_colour_bar(img, lo, hi, pic.value_name);
+  if (valued) draw_colour_bar(img, lo, hi, pic.value_name);
+}
+
+void draw_key(cv::Mat& img, const Picture& pic) {
+  int y = img.rows / 5;
+  for (const auto& [name, c] : pic.key) {
+    const int x = img.cols - 210;
+    cv::rectangle(img, {x, y - 12}, {x + 24, y + 2}, cv::Scalar(c.b, c.g, c.r), cv::FILLED);
+    cv::putText(img, name, {x + 32, y}, cv::FONT_HERSHEY_SIMPLEX, 0.5, kText, 1, cv::LINE_AA);
+    y += 24;
+  }
 }
 }  // namespace
 
@@ -124,6 +137,7 @@ cv::Mat draw(const Cloud& cloud, std::span<const Wire> wires, const Picture& pic
   const Camera cam = make_camera(view, target, extent(around, target));
   draw_points(img, cloud, cam, pic);
   draw_wires(img, wires, cam, pic);
+  draw_key(img, pic);
   int y = 28;
   if (!pic.title.empty())
     cv::putText(img, pic.title, {14, y}, cv::FONT_HERSHEY_SIMPLEX, 0.75, kText, 2, cv::LINE_AA), y += 28;

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,8 +27,9 @@ struct View {
 
 struct Wire {
   std::vector<std::array<Eigen::Vector3f, 2>> segments;  // in the cloud's frame
-  double value = 0.0;                                    // colour by this
+  double value = 0.0;                                    // colour by this (drawn best last)
   int thickness = 2;
+  std::optional<Rgb8> colour;  // a fixed colour (a category) instead of the value's
 };
 
 struct Picture {
@@ -36,6 +38,8 @@ struct Picture {
   std::vector<std::string> legend;   // lines of text under the title
   bool colour_by_label = false;      // points coloured by label (segments) instead of RGB
   double point_size = 0.0;           // pixels; 0: from the point density
+  // Categories of fixed-colour wires, shown as a key in place of the colour bar.
+  std::vector<std::pair<std::string, Rgb8>> key;
 };
 
 // Draws `cloud` (finite points) and `wires`. The view's target is the centroid of `focus` when
