@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "uwgrasp/core/error.hpp"
-#include "uwgrasp/sim/scene.hpp"
+#include "uwgrasp/sim/builtin_scenes.hpp"
 
 namespace uwgrasp::sim {
 
@@ -51,11 +51,12 @@ SceneObject cross(const V& where) {
           at(where), kRed, false};
 }
 
+}  // namespace
+
 // The camera of the built-in scenes looks 0.6 rad (34 deg) below the vehicle's bow, like the
 // BlueROV2's tilting camera turned down to the seafloor.
 Mount tilted_camera() { return {V(0.20, 0, 0), V(0, -0.6, 0)}; }
 
-// A level vehicle placed so that the camera's optical axis passes through `target` at `distance`.
 VehiclePose looking_at(const V& target, double distance) {
   VehiclePose v;
   v.rpy = V::Zero();
@@ -67,6 +68,7 @@ VehiclePose looking_at(const V& target, double distance) {
   return v;
 }
 
+namespace {
 Scene single(SceneObject o, const V& target, double distance) {
   o.interest = true;
   Scene s{o.name, {o}, {}, looking_at(target, distance), tilted_camera()};
@@ -75,7 +77,9 @@ Scene single(SceneObject o, const V& target, double distance) {
 }  // namespace
 
 std::vector<std::string> builtin_scene_names() {
-  return {"barbell", "ring", "cross", "thesis", "several"};
+  std::vector<std::string> names = {"barbell", "ring", "cross", "thesis", "several"};
+  for (const auto& n : mesh_scene_names()) names.push_back(n);
+  return names;
 }
 
 Scene builtin_scene(const std::string& name) {
@@ -106,6 +110,7 @@ Scene builtin_scene(const std::string& name) {
     return Scene{"several", {bb, ball, drum, crate, buoy}, {}, looking_at(V(0.1, 0, 0.05), 1.2),
                  tilted_camera()};
   }
+  if (std::optional<Scene> s = mesh_scene(name)) return *s;
   std::string list;
   for (const auto& n : builtin_scene_names()) list += (list.empty() ? "" : ", ") + n;
   throw Error("unknown scene '" + name + "' (built-in scenes: " + list + ")");

@@ -92,6 +92,13 @@ bool box_callback(RTCPointQueryFunctionArguments* args) {
   if (owner < 0 && !q.seafloor) return false;
   std::array<V3, 3> local = triangle(q.w, args->geomID, args->primID);
   for (V3& v : local) v = q.box.rotation.transpose() * (v - q.box.centre);
+  // Separating axes that cost nothing: the box's faces, then the triangle's plane (most of the
+  // triangles near a box's bounding sphere miss the box).
+  const V3 lo = local[0].cwiseMin(local[1]).cwiseMin(local[2]);
+  const V3 hi = local[0].cwiseMax(local[1]).cwiseMax(local[2]);
+  if ((lo.array() > q.box.half.array()).any() || (hi.array() < -q.box.half.array()).any()) return false;
+  const V3 n = (local[1] - local[0]).cross(local[2] - local[0]);
+  if (std::abs(n.dot(local[0])) > n.cwiseAbs().dot(q.box.half)) return false;
   Polygon poly = clipped(local, q.box.half);
   if (poly.empty()) return false;
   const int object = owner < 0 ? kSeafloorObject : owner;

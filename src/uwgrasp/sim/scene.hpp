@@ -75,10 +75,16 @@ Mesh object_mesh(const SceneObject& object);
 // object of interest, or non-finite poses.
 void check_scene(const Scene& scene);
 
-// Built-in scenes: barbell, ring, cross (each alone), thesis (all three, Figure 8.1) and
-// several (several red objects, Figure 8.5). Throws Error listing the names for an unknown one.
+// Built-in scenes: barbell, ring, cross (each alone), thesis (all three, Figure 8.1), several
+// (several red objects, Figure 8.5), and real objects' meshes from the data folder - sugar_box,
+// mustard_bottle (YCB), t_bar, torque_tool, hot_stab (uuv_simulator) - each as NAME (upright),
+// NAME_lying and NAME_turned. Throws Error listing the names for an unknown one, and naming the
+// file for a mesh scene whose mesh is not in the data folder.
 Scene builtin_scene(const std::string& name);
 std::vector<std::string> builtin_scene_names();
+
+// The folder holding the shared meshes: $UWGRASP_DATA, else the one beside the source tree.
+std::string data_dir();
 
 const char* shape_name(ShapeKind k);
 
