@@ -1,4 +1,4 @@
-#include "common.hpp"
+#include "app/common.hpp"
 
 #include <filesystem>
 

@@ -1,9 +1,9 @@
 #pragma once
-// Options every subcommand shares, and the error policy of the CLI.
+// What the CLI's subcommands and the studies share: common options, the effective config,
+// output folders and progress lines.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,18 +41,5 @@ double ms_since(std::chrono::steady_clock::time_point t0);
 
 // Writes one line to stderr when stderr is a terminal or --progress asked for it.
 void progress(const std::string& line);
-
-// Registers a subcommand; `run` is called when it was chosen and returns the exit code.
-using Runner = std::function<int()>;
-void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
-void add_config_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
-void add_approach_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
-void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
-void add_demo_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
-void add_evaluate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
-void add_simulate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
-// Also records the command line for its report.
-void add_experiments_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners,
-                             int argc, char** argv);
 
 }  // namespace uwgrasp::app

@@ -1,8 +1,8 @@
-#include "simulation.hpp"
+#include "app/simulation.hpp"
 
 #include <fstream>
 
-#include "common.hpp"
+#include "app/common.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/grasp/frames.hpp"
 #include "uwgrasp/io/atomic_file.hpp"

@@ -5,11 +5,14 @@
 #include <string>
 #include <vector>
 
-#include "simulation.hpp"
+#include "app/simulation.hpp"
 #include "uwgrasp/grasp/detector.hpp"
 #include "uwgrasp/io/config.hpp"
 
-namespace uwgrasp::app {
+namespace uwgrasp::experiments {
+
+// The studies are the CLI's: they share its sessions, simulations and output helpers.
+using namespace uwgrasp::app;
 
 struct Condition {
   std::string name;   // as the report and file names name it
@@ -113,8 +116,13 @@ void run_sampling_study(const ExperimentPlan& plan, const Condition& c, Conditio
 // The vehicle on a detection's top grasp (thesis presets run without the whole-vehicle check).
 VehicleRun run_vehicle(const grasp::Detection& d, const grasp::Grasp& g, const io::Config& cfg);
 
+// Every condition of the thesis study - each water in `waters`, and for coastal and turbid also
+// with the adapted settings - with tables 8.1-8.5 and figures 8.13-8.16 each.
+std::vector<ConditionResult> run_thesis_study(const ExperimentPlan& plan,
+                                              const std::vector<std::string>& waters);
+
 // DIR/report.md and its PNGs; `command` is the command line that made them.
 void write_report(const std::string& dir, const std::vector<ConditionResult>& results,
                   const ExperimentPlan& plan, const std::string& command);
 
-}  // namespace uwgrasp::app
+}  // namespace uwgrasp::experiments

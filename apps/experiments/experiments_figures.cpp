@@ -4,9 +4,9 @@
 
 #include <filesystem>
 
-#include "experiments_report.hpp"
+#include "experiments/experiments_report.hpp"
 
-namespace uwgrasp::app {
+namespace uwgrasp::experiments {
 
 namespace {
 const char* figure_number(const std::string& object) {
@@ -113,4 +113,4 @@ void write_overview(std::ostringstream& md, const std::vector<ConditionResult>& 
   md << "\n";
 }
 
-}  // namespace uwgrasp::app
+}  // namespace uwgrasp::experiments

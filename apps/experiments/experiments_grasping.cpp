@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <chrono>
 
-#include "common.hpp"
-#include "experiments.hpp"
+#include "app/common.hpp"
+#include "experiments/experiments.hpp"
 #include "uwgrasp/cloud/color.hpp"
 #include "uwgrasp/core/error.hpp"
 
-namespace uwgrasp::app {
+namespace uwgrasp::experiments {
 
 namespace {
 constexpr std::uint32_t kTable83Samples = 5000;
@@ -102,4 +102,4 @@ void run_sampling_study(const ExperimentPlan& plan, const Condition& c, Conditio
   }
 }
 
-}  // namespace uwgrasp::app
+}  // namespace uwgrasp::experiments

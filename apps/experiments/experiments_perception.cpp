@@ -6,13 +6,13 @@
 #include <chrono>
 #include <cmath>
 
-#include "common.hpp"
-#include "experiments.hpp"
+#include "app/common.hpp"
+#include "experiments/experiments.hpp"
 #include "uwgrasp/cloud/voxel.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/grasp/frames.hpp"
 
-namespace uwgrasp::app {
+namespace uwgrasp::experiments {
 
 namespace {
 constexpr double kThesisObjectPoints = 64648;  // the barbell cloud of thesis Figure 8.8a
@@ -180,4 +180,4 @@ CheckStudy run_check_study(const ExperimentPlan& plan, const Condition& c) {
   return out;
 }
 
-}  // namespace uwgrasp::app
+}  // namespace uwgrasp::experiments

@@ -7,12 +7,12 @@
 #include <sstream>
 #include <thread>
 
-#include "common.hpp"
-#include "experiments.hpp"
-#include "experiments_report.hpp"
+#include "app/common.hpp"
+#include "experiments/experiments.hpp"
+#include "experiments/experiments_report.hpp"
 #include "uwgrasp/io/atomic_file.hpp"
 
-namespace uwgrasp::app {
+namespace uwgrasp::experiments {
 
 std::string fmt(const char* format, ...) {
   va_list args, again;
@@ -101,4 +101,4 @@ void write_report(const std::string& dir, const std::vector<ConditionResult>& re
   io::write_text((std::filesystem::path(dir) / "report.md").string(), md.str());
 }
 
-}  // namespace uwgrasp::app
+}  // namespace uwgrasp::experiments

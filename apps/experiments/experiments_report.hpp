@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "experiments.hpp"
+#include "experiments/experiments.hpp"
 
-namespace uwgrasp::app {
+namespace uwgrasp::experiments {
 
 // printf into a string (report cells).
 std::string fmt(const char* format, ...) __attribute__((format(printf, 1, 2)));
@@ -25,4 +25,4 @@ void write_vehicle_runs(std::ostringstream& md, const ConditionResult& r);
 // Figures 8.13-8.16 as DIR/<condition>_fig8_*.png, with their tables.
 void write_figures(std::ostringstream& md, const ConditionResult& r, const std::string& dir);
 
-}  // namespace uwgrasp::app
+}  // namespace uwgrasp::experiments

@@ -2,10 +2,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "experiments_report.hpp"
+#include "experiments/experiments_report.hpp"
 #include "uwgrasp/grasp/samplers.hpp"
 
-namespace uwgrasp::app {
+namespace uwgrasp::experiments {
 
 namespace {
 template <class Run, class F>
@@ -176,4 +176,4 @@ void write_weights(std::ostringstream& md, const ConditionResult& r) {
   md << "\n";
 }
 
-}  // namespace uwgrasp::app
+}  // namespace uwgrasp::experiments

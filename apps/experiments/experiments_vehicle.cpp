@@ -5,15 +5,15 @@
 #include <filesystem>
 #include <numbers>
 
-#include "experiments.hpp"
-#include "experiments_report.hpp"
-#include "simulation.hpp"
+#include "experiments/experiments.hpp"
+#include "experiments/experiments_report.hpp"
+#include "app/simulation.hpp"
 #include "uwgrasp/grasp/metrics.hpp"
 #include "uwgrasp/vehicle/approach.hpp"
 #include "uwgrasp/vehicle/thrusters.hpp"
 #include "uwgrasp/viz/picture.hpp"
 
-namespace uwgrasp::app {
+namespace uwgrasp::experiments {
 
 namespace {
 constexpr double kPi = std::numbers::pi;
@@ -144,4 +144,4 @@ void write_vehicle_runs(std::ostringstream& md, const ConditionResult& r) {
   md << "\n";
 }
 
-}  // namespace uwgrasp::app
+}  // namespace uwgrasp::experiments

@@ -1,7 +1,8 @@
 // uwgrasp config: prints the effective configuration as YAML (a starting point for --config).
 #include <iostream>
 
-#include "common.hpp"
+#include "app/common.hpp"
+#include "commands.hpp"
 
 namespace uwgrasp::app {
 

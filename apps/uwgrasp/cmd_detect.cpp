@@ -5,8 +5,9 @@
 #include <filesystem>
 #include <numbers>
 
-#include "common.hpp"
-#include "simulation.hpp"
+#include "app/common.hpp"
+#include "commands.hpp"
+#include "app/simulation.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/grasps_json.hpp"
 #include "uwgrasp/io/pcd.hpp"

@@ -7,8 +7,9 @@
 #include <numbers>
 #include <sstream>
 
-#include "common.hpp"
-#include "simulation.hpp"
+#include "app/common.hpp"
+#include "commands.hpp"
+#include "app/simulation.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/eval/evaluate.hpp"
 #include "uwgrasp/io/config_schema.hpp"

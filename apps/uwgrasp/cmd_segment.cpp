@@ -3,8 +3,9 @@
 #include <filesystem>
 #include <iostream>
 
-#include "common.hpp"
-#include "simulation.hpp"
+#include "app/common.hpp"
+#include "commands.hpp"
+#include "app/simulation.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/pcd.hpp"
 #include "uwgrasp/segment/pipeline.hpp"

@@ -5,8 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "common.hpp"
-#include "simulation.hpp"
+#include "app/common.hpp"
+#include "commands.hpp"
+#include "app/simulation.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/atomic_file.hpp"
 #include "uwgrasp/io/pcd.hpp"

@@ -2,7 +2,8 @@
 // Exit codes: 0 success, 2 bad input or usage, 1 internal error.
 #include <iostream>
 
-#include "common.hpp"
+#include "app/common.hpp"
+#include "commands.hpp"
 #include "uwgrasp/core/error.hpp"
 
 int main(int argc, char** argv) {

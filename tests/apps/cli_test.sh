@@ -135,6 +135,32 @@ if "$BIN" approach --grasps "$G" --object ring --current 0.1,0,0 --out "$T/ap" >
    grep -q "reached: yes" "$T/ap.txt" && [[ -s $T/ap/approach.png && $(head -1 "$T/ap/approach.csv" | cut -d, -f1-2) == "t,phase" ]] &&
    [[ $(wc -l <"$T/ap/approach.csv") -gt 100 ]]; then passes=$((passes + 1)); else
   echo "FAIL: approach: $(cat "$T/ap.txt")"; fails=$((fails + 1)); fi
+# Evaluate: bad truth, grasps and options are named; a good run judges the demo's grasps.
+TR=$T/demo/truth.yaml
+sed 's|shape: box|shape: mesh\n        file: /nonexistent/part.obj|' "$TR" >"$T/nomesh_truth.yaml"
+grep -v '    fx:' "$TR" >"$T/nofx_truth.yaml"
+printf '{"grasps": [{"position": [0, 0, 1], "orientation_xyzw": [0, 0, 0, 1]}]}' >"$T/noscore.json"
+printf '{"grasps": [{"position": [0, 0, 1], "orientation_xyzw": [0, 0, 0.5, 1], "score": 1}]}' >"$T/nonunit.json"
+expect 2 "part.obj" -- evaluate --truth "$T/nomesh_truth.yaml" --grasps "$G" --object barbell --json "$T/out/e.json"
+expect 2 "camera.intrinsics.fx" -- evaluate --truth "$T/nofx_truth.yaml" --grasps "$G" --object ring --json "$T/out/e.json"
+expect 2 "missing.yaml" -- evaluate --truth "$T/missing.yaml" --grasps "$G" --json "$T/out/e.json"
+expect 2 "grasps\[0\].score" -- evaluate --truth "$TR" --grasps "$T/noscore.json" --json "$T/out/e.json"
+expect 2 "not a unit quaternion" -- evaluate --truth "$TR" --grasps "$T/nonunit.json" --json "$T/out/e.json"
+expect 2 "positive" -- evaluate --truth "$TR" --grasps "$G" --object ring --mu 0.4,0 --json "$T/out/e.json"
+expect 2 "positive" -- evaluate --truth "$TR" --grasps "$G" --object ring --mu -0.2 --json "$T/out/e.json"
+expect 2 "'x'" -- evaluate --truth "$TR" --grasps "$G" --object ring --mu 0.4,x --json "$T/out/e.json"
+expect 2 "--object" -- evaluate --truth "$TR" --grasps "$G" --json "$T/out/e.json"
+expect 2 "anchor" -- evaluate --truth "$TR" --grasps "$G" --object anchor --json "$T/out/e.json"
+expect 0 "" -- evaluate --help
+if "$BIN" evaluate --truth "$TR" --grasps "$G" --object cross --json "$T/ev.json" --png "$T/ev.png" >"$T/ev.txt" 2>&1 &&
+   grep -q "precision@1/5/10" "$T/ev.txt" && grep -q "robust success of the top-1" "$T/ev.txt" &&
+   grep -q '"top1_success"' "$T/ev.json" && [[ $(grep -c '"verdict"' "$T/ev.json") -eq 10 ]] && [[ -s $T/ev.png ]]; then
+  passes=$((passes + 1)); else echo "FAIL: evaluate: $(cat "$T/ev.txt")"; fails=$((fails + 1)); fi
+# Same seed, same verdicts at any thread count.
+"$BIN" evaluate --truth "$TR" --grasps "$G" --object ring --threads 1 --json "$T/ev1.json" >/dev/null 2>&1
+"$BIN" evaluate --truth "$TR" --grasps "$G" --object ring --threads 2 --json "$T/ev2.json" >/dev/null 2>&1
+if cmp -s "$T/ev1.json" "$T/ev2.json"; then passes=$((passes + 1)); else
+  echo "FAIL: evaluate differs between 1 and 2 threads"; fails=$((fails + 1)); fi
 # Experiments: bad options stop before anything is written; one short run writes the report.
 expect 2 "" -- experiments --iterations 0 --out "$T/out"
 expect 2 "" -- experiments --water muddy --out "$T/out"

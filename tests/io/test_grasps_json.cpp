@@ -1,7 +1,11 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "objects.hpp"
+#include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/grasps_json.hpp"
 
 namespace uwgrasp::io {
@@ -47,6 +51,68 @@ TEST(GraspsJson, FieldsAsSpecifiedAndByteIdenticalAcrossThreadCounts) {
   std::size_t rejected = 0;
   for (const auto& [k, v] : j["counts"]["rejected"].items()) rejected += v.get<std::size_t>();
   EXPECT_EQ(rejected + j["counts"]["feasible"].get<std::size_t>(), j["counts"]["candidates"].get<std::size_t>());
+}
+
+namespace {
+std::string write_tmp(const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+std::string list_error(const std::string& text, const std::string& object = "") {
+  try {
+    read_grasp_list(write_tmp("uwgrasp_list.json", text), object);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+// Another detector's file: only the documented fields, extra ones ignored, no config.
+TEST(GraspList, ReadsAnyDetectorsFileOrderedByScore) {
+  const GraspList l = read_grasp_list(
+      write_tmp("uwgrasp_list.json",
+                R"({"detector": "other", "grasps": [
+                     {"position": [0, 0, 1], "orientation_xyzw": [0, 0, 0, 1], "score": 0.2, "extra": 3},
+                     {"position": [0, 0, 2], "orientation_xyzw": [0, 0, 0.7071068, 0.7071068], "score": 0.9}]})"),
+      "");
+  ASSERT_EQ(l.grasps.size(), 2u);
+  EXPECT_EQ(l.frame, "camera_optical");
+  EXPECT_FALSE(l.gripper_from_file);
+  EXPECT_DOUBLE_EQ(l.grasps[0].score, 0.9);
+  EXPECT_EQ(l.grasps[0].rank, 2u);
+  EXPECT_NEAR(l.grasps[0].pose.translation().z(), 2.0, 1e-12);
+  EXPECT_NEAR(l.grasps[0].pose.linear()(1, 0), 1.0, 1e-6);  // 90 degrees about z
+  EXPECT_EQ(l.grasps[1].rank, 1u);
+}
+
+TEST(GraspList, GripperFromTheConfigAndDemoObjects) {
+  const GraspList l = read_grasp_list(
+      write_tmp("uwgrasp_list.json",
+                R"({"objects": [{"name": "ring", "config": {"grasp": {"gripper": {"max_aperture": 0.12}}},
+                                 "grasps": []},
+                                {"name": "cross", "grasps": []}]})"),
+      "ring");
+  EXPECT_TRUE(l.gripper_from_file);
+  EXPECT_FLOAT_EQ(l.gripper.max_aperture, 0.12f);
+  EXPECT_EQ(l.object, "ring");
+  EXPECT_NE(list_error(R"({"objects": [{"name": "ring", "grasps": []}]})").find("--object"), std::string::npos);
+  EXPECT_NE(list_error(R"({"objects": [{"name": "ring", "grasps": []}]})", "anchor").find("anchor"), std::string::npos);
+}
+
+TEST(GraspList, BadFieldsAreNamed) {
+  EXPECT_NE(list_error(R"({"grasps": [{"position": [0, 0], "orientation_xyzw": [0, 0, 0, 1], "score": 1}]})")
+                .find("grasps[0].position"), std::string::npos);
+  EXPECT_NE(list_error(R"({"grasps": [{"position": [0, 0, 1], "orientation_xyzw": [0, 0, 0, 1]}]})")
+                .find("grasps[0].score"), std::string::npos);
+  EXPECT_NE(list_error(R"({"grasps": [{"position": [0, 0, 1], "orientation_xyzw": [0, 0, 0, 1.2], "score": 1}]})")
+                .find("not a unit quaternion"), std::string::npos);
+  EXPECT_NE(list_error(R"({"frame": "base_link", "grasps": []})").find("frame"), std::string::npos);
+  EXPECT_NE(list_error(R"({"config": {"grasp": {"gripper": {"max_aperture": -1}}}, "grasps": []})")
+                .find("grasp.gripper.max_aperture"), std::string::npos);
+  EXPECT_NE(list_error("{").find("not valid JSON"), std::string::npos);
+  EXPECT_NE(list_error(R"({"nothing": 1})").find("grasps"), std::string::npos);
 }
 
 }  // namespace uwgrasp::io
