@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/simulation.hpp"
+#include "uwgrasp/eval/summary.hpp"
 #include "uwgrasp/grasp/detector.hpp"
 #include "uwgrasp/io/config.hpp"
 
@@ -51,11 +52,19 @@ struct SegmentStudy {
 };
 
 // Table 8.3: one object, one sampler, 5000 candidates per iteration.
+// The top grasps of one detection judged against the true shapes (eval/): not in the thesis,
+// which judged its final grasps by inspection (8.5).
+struct Judged {
+  eval::Summary summary;
+  std::string top1;  // the top-1's outcome at the reference mu ("no grasp" when there is none)
+};
+
 struct SamplerRow {
   std::string object;
   grasp::SamplerKind kind = grasp::SamplerKind::normal;
   std::uint32_t samples = 5000;
   std::vector<double> sample_ms, collision_free, feasible;
+  std::vector<Judged> judged;  // per iteration, its top 10
 };
 
 // Table 8.4: 3000 candidates checked on the barbell's full and voxelised object cloud.
@@ -91,6 +100,7 @@ struct FinalObject {
   std::vector<VehicleRun> vehicle; // per best grasp
   std::size_t failures = 0;        // iterations where detection stopped with an error
   std::vector<std::string> errors; // their distinct messages
+  std::vector<Judged> judged;      // per iteration (failures included), the preset's top 10
   Cloud view;                      // the first iteration's frame, for the figure
   std::vector<Eigen::Vector3f> focus;
 };
@@ -120,6 +130,10 @@ VehicleRun run_vehicle(const grasp::Detection& d, const grasp::Grasp& g, const i
 // with the adapted settings - with tables 8.1-8.5 and figures 8.13-8.16 each.
 std::vector<ConditionResult> run_thesis_study(const ExperimentPlan& plan,
                                               const std::vector<std::string>& waters);
+
+// The detection's top grasps (at most summary.top) judged in `world`, seen by the frame's camera.
+Judged judge_detection(const sim::World& world, const sim::Frame& f, const grasp::Detection& d,
+                       int target, const grasp::GripperConfig& gripper, std::uint64_t seed);
 
 // DIR/report.md and its PNGs; `command` is the command line that made them.
 void write_report(const std::string& dir, const std::vector<ConditionResult>& results,

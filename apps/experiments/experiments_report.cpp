@@ -95,6 +95,7 @@ void write_report(const std::string& dir, const std::vector<ConditionResult>& re
     write_sampling(md, r);
     write_checking(md, r);
     write_weights(md, r);
+    write_judged(md, r);
     write_figures(md, r, dir);
     write_vehicle_runs(md, r);
   }

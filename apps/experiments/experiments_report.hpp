@@ -18,6 +18,7 @@ void write_segmentation(std::ostringstream& md, const ConditionResult& r);  // t
 void write_sampling(std::ostringstream& md, const ConditionResult& r);      // table 8.3
 void write_checking(std::ostringstream& md, const ConditionResult& r);      // table 8.4
 void write_weights(std::ostringstream& md, const ConditionResult& r);       // table 8.5
+void write_judged(std::ostringstream& md, const ConditionResult& r);        // judged top grasps
 // The vehicle: hold cost against roll, pitch and yaw, q_o against q_v over the thesis's
 // sampling range (DIR/vehicle_qo_qv.png), and the top grasps of one condition.
 void write_vehicle_model(std::ostringstream& md, const io::Config& cfg, const std::string& dir);

@@ -9,6 +9,7 @@
 
 #include "app/common.hpp"
 #include "commands.hpp"
+#include "app/judged_picture.hpp"
 #include "app/simulation.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/eval/evaluate.hpp"
@@ -141,54 +142,6 @@ json summary_json(const eval::Evaluation& e, const eval::SummaryConfig& sc, cons
           {"judged", e.summary.judged}};
 }
 
-// Outcome colours: green holds, amber closes without force closure, red collides, greys and
-// blues for the rest.
-Rgb8 outcome_colour(eval::Outcome o) {
-  static const Rgb8 c[eval::kOutcomes] = {{40, 190, 60},  {240, 160, 20}, {220, 30, 30}, {150, 150, 150},
-                                          {160, 60, 200}, {40, 110, 230}, {40, 200, 210}};
-  return c[static_cast<int>(o)];
-}
-
-// The truth seen by its camera (perfect sensor, clear water) with the judged grippers coloured by
-// outcome, the best-ranked drawn thicker, and a cross at each contact.
-cv::Mat picture(const sim::World& world, const eval::Camera& cam, const grasp::Gripper& g,
-                std::span<const Pose> poses, const eval::Evaluation& e, int target, double mu_ref,
-                const std::string& title) {
-  sim::RenderConfig rc;
-  rc.camera.width = std::uint32_t(cam.intrinsics.width), rc.camera.height = std::uint32_t(cam.intrinsics.height);
-  rc.camera.hfov = 2.0 * std::atan(0.5 * cam.intrinsics.width / cam.intrinsics.fx);
-  rc.camera.max_range = cam.max_range;
-  rc.noise.enabled = false;
-  const sim::Frame f = sim::render_rgbd(world, cam.world_from_camera, rc, 1);
-  std::vector<Eigen::Vector3f> focus;
-  for (std::size_t i = 0; i < f.labels.size(); ++i)
-    if (f.labels[i] == sim::kLabelFirstObject + target && f.cloud.points[i].allFinite()) focus.push_back(f.cloud.points[i]);
-  const Pose camera_from_world = cam.world_from_camera.inverse();
-  std::vector<viz::Wire> wires;
-  for (std::size_t i = e.judgements.size(); i-- > 0;) {
-    const eval::Judgement& j = e.judgements[i];
-    viz::Wire w = gripper_wire(camera_from_world * poses[i], g, false);
-    w.colour = outcome_colour(eval::outcome(j, mu_ref));
-    w.thickness = i == 0 ? 4 : 2;
-    w.value = double(e.judgements.size() - i);
-    if (j.verdict == eval::Verdict::closes)
-      for (const Eigen::Vector3d& c : j.contacts)
-        for (int a = 0; a < 3; ++a) {
-          const Eigen::Vector3f p = (camera_from_world * c).cast<float>();
-          const Eigen::Vector3f d = 0.006f * Eigen::Vector3f::Unit(a);
-          w.segments.push_back({p - d, p + d});
-        }
-    wires.push_back(std::move(w));
-  }
-  viz::Picture pic;
-  pic.title = title;
-  pic.legend.push_back("grippers coloured by the judged outcome at mu " + io::shortest(mu_ref) +
-                       "; the best-ranked grasp drawn thick; crosses at the contacts");
-  for (int k = 0; k < eval::kOutcomes; ++k)
-    pic.key.emplace_back(eval::outcome_name(eval::Outcome(k)), outcome_colour(eval::Outcome(k)));
-  return viz::draw(f.cloud, wires, pic, viz::View{}, focus);
-}
-
 int run_evaluate(const EvaluateOptions& o) {
   const Session session = open_session(o.common);
   eval::SummaryConfig sc;
@@ -225,9 +178,13 @@ int run_evaluate(const EvaluateOptions& o) {
       j["judgements"].push_back(judgement_json(e.judgements[i], list.grasps[i], sc.reference_mu, truth.scene));
     io::write_json(o.json_out, j);
   }
-  if (!o.png.empty())
-    write_png(o.png, picture(world, camera, gripper, poses, e, target, sc.reference_mu,
-                             "uwgrasp evaluate: " + o.grasps + " on " + object_name(truth.scene, target)));
+  if (!o.png.empty()) {
+    viz::Picture pic;
+    pic.title = "uwgrasp evaluate: " + o.grasps + " on " + object_name(truth.scene, target);
+    pic.legend.push_back("grippers coloured by the judged outcome at mu " + io::shortest(sc.reference_mu) +
+                         "; the best-ranked grasp drawn thick; crosses at the contacts");
+    write_png(o.png, judged_picture(world, camera, gripper, poses, e.judgements, target, sc.reference_mu, pic));
+  }
   return 0;
 }
 }  // namespace

@@ -169,8 +169,22 @@ expect 0 "" -- experiments --help
 if "$BIN" experiments --iterations 1 --water clear --out "$T/exp" >/dev/null 2>"$T/exp.txt" &&
    grep -q "Table 8.4" "$T/exp/report.md" && grep -q "iteration 1/1" "$T/exp.txt" &&
    grep -q "whole vehicle fits" "$T/exp/report.md" && [[ -s $T/exp/vehicle_qo_qv.png ]] &&
+   grep -q "Judged against the truth" "$T/exp/report.md" &&
    [[ $(ls "$T/exp"/clear_fig8.1[3-6]_*.png | wc -l) -eq 4 ]]; then passes=$((passes + 1)); else
   echo "FAIL: experiments: $(tail -3 "$T/exp.txt")"; fails=$((fails + 1)); fi
+# The judged study: unknown scenes stop before any work; a short run writes its report.
+expect 2 "unknown scene 'atlantis'" -- experiments --study judged --scenes barbell,atlantis --iterations 1 --out "$T/out"
+expect 2 "clear-noisy" -- experiments --water clear-noisy --iterations 1 --out "$T/out"
+if "$BIN" experiments --study judged --scenes cross --water clear --water coastal --iterations 1 --out "$T/jd" \
+     >/dev/null 2>"$T/jd.txt" && grep -q "## Judged success" "$T/jd/report.md" &&
+   grep -q "## Calibration" "$T/jd/report.md" && grep -q "cross, coastal" "$T/jd/report.md" &&
+   [[ -s $T/jd/judged_cross.png ]]; then passes=$((passes + 1)); else
+  echo "FAIL: judged study: $(tail -3 "$T/jd.txt")"; fails=$((fails + 1)); fi
+if [[ -d "$DATA/meshes" ]]; then
+  if "$BIN" experiments --study judged --scenes sugar_box_turned --water clear --iterations 1 --out "$T/jm" \
+       >/dev/null 2>&1 && grep -q "sugar_box_turned, clear" "$T/jm/report.md"; then passes=$((passes + 1)); else
+    echo "FAIL: judged study on a mesh scene"; fails=$((fails + 1)); fi
+fi
 # config/default.yaml is what `uwgrasp config` prints, plus comments.
 if diff <("$BIN" config) <(grep -v '^ *#' "$SRC/config/default.yaml" | sed 's/  # .*$//') >/dev/null; then passes=$((passes + 1)); else
   echo "FAIL: config/default.yaml differs from 'uwgrasp config'"; fails=$((fails + 1)); fi

@@ -41,6 +41,13 @@ double pearson(const std::vector<double>& a, const std::vector<double>& b) {
 }
 }  // namespace
 
+double spearman(std::span<const double> a, std::span<const double> b) {
+  if (a.size() != b.size())
+    throw Error("spearman: " + std::to_string(a.size()) + " values against " + std::to_string(b.size()));
+  if (a.empty()) return 0.0;
+  return pearson(mid_ranks({a.begin(), a.end()}), mid_ranks({b.begin(), b.end()}));
+}
+
 Calibration calibrate(std::span<const double> score, std::span<const bool> success) {
   if (score.size() != success.size())
     throw Error("calibration: " + std::to_string(score.size()) + " scores for " +

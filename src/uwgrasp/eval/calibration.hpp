@@ -20,4 +20,8 @@ struct Calibration {
 // when the spans differ in length; non-finite scores rank lowest.
 Calibration calibrate(std::span<const double> score, std::span<const bool> success);
 
+// Spearman's rank correlation of two samples (ties share their mean rank); 0 when either is
+// constant. Throws Error when the spans differ in length.
+double spearman(std::span<const double> a, std::span<const double> b);
+
 }  // namespace uwgrasp::eval

@@ -1,0 +1,166 @@
+// report.md of the judged study (judged_study.hpp): judged success per scene and water, the
+// failure modes of the top-1, the calibration of the detector's scores, and one figure per object.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include "app/common.hpp"
+#include "app/simulation.hpp"
+#include "experiments/experiments_report.hpp"
+#include "experiments/judged_study.hpp"
+#include "uwgrasp/io/atomic_file.hpp"
+#include "uwgrasp/io/config_schema.hpp"
+
+namespace uwgrasp::experiments {
+
+namespace {
+std::size_t mu_index(const JudgedPlan& p) {
+  const auto& mu = p.summary.mu;
+  const auto it = std::find(mu.begin(), mu.end(), p.summary.reference_mu);
+  return it == mu.end() ? mu.size() : std::size_t(it - mu.begin());
+}
+
+// Means over the runs of a set of cases.
+struct Totals {
+  std::size_t runs = 0, no_grasp = 0, errors = 0;
+  std::vector<double> top1;  // per mu: share of runs whose top-1 holds
+  double robust = 0, p1 = 0, p10 = 0, ap = 0;
+  std::size_t robust_n = 0;
+  std::map<std::string, std::size_t> modes;  // top-1 outcome (with collision detail)
+};
+
+std::string top1_mode(const JudgedRun& r, double mu) {
+  if (!r.error.empty()) return "no grasp (detection stopped)";
+  if (!r.has_top1) return "no grasp (none feasible)";
+  const eval::Judgement& j = r.top1;
+  if (j.verdict != eval::Verdict::collision) return eval::outcome_name(eval::outcome(j, mu));
+  const std::string part = grasp::part_name(grasp::Part(j.part));
+  if (j.object == sim::kSeafloorObject) return "collision: " + part + " in the seafloor";
+  return "collision: " + part + (j.inside ? " wholly inside the object" : j.visible ? " through a seen surface" : " through an unseen surface");
+}
+
+Totals totals(const std::vector<const JudgedCaseResult*>& cases, const JudgedPlan& plan) {
+  Totals t;
+  t.top1.assign(plan.summary.mu.size(), 0.0);
+  for (const auto* c : cases)
+    for (const JudgedRun& r : c->runs) {
+      ++t.runs;
+      t.errors += r.error.empty() ? 0 : 1;
+      t.no_grasp += r.has_top1 ? 0 : 1;
+      for (std::size_t m = 0; m < t.top1.size(); ++m) t.top1[m] += r.summary.top1[m] ? 1 : 0;
+      t.p1 += r.summary.precision[0], t.p10 += r.summary.precision[2], t.ap += r.summary.ap;
+      if (std::isfinite(r.robust)) t.robust += r.robust, ++t.robust_n;
+      ++t.modes[top1_mode(r, plan.summary.reference_mu)];
+    }
+  const double n = double(std::max<std::size_t>(t.runs, 1));
+  for (double& v : t.top1) v /= n;
+  t.p1 /= n, t.p10 /= n, t.ap /= n;
+  // A run without a grasp has no robust share: it counts as 0, like a failed grasp.
+  t.robust /= n;
+  return t;
+}
+
+std::string pct(double v) { return fmt("%.0f %%", 100.0 * v); }
+
+void success_row(std::ostringstream& md, const std::string& what, const Totals& t, const JudgedPlan& p) {
+  const std::size_t k = mu_index(p);
+  md << "| " << what << " | " << t.runs << " | " << (k < t.top1.size() ? pct(t.top1[k]) : "-") << " | ";
+  for (std::size_t m = 0; m < t.top1.size(); ++m) md << (m ? " / " : "") << fmt("%.0f", 100 * t.top1[m]);
+  md << " | " << pct(t.robust) << " | " << pct(t.p10) << " | " << fmt("%.3f", t.ap) << " | " << t.no_grasp
+     << " |\n";
+}
+
+void success_header(std::ostringstream& md, const JudgedPlan& p, const char* first) {
+  md << "| " << first << " | runs | top-1 success at mu " << io::shortest(p.summary.reference_mu)
+     << " | top-1 at mu ";
+  for (std::size_t m = 0; m < p.summary.mu.size(); ++m) md << (m ? "/" : "") << io::shortest(p.summary.mu[m]);
+  md << " (%) | robust top-1 | precision@10 | AP | no grasp |\n|---|---|---|---|---|---|---|---|\n";
+}
+
+void write_success(std::ostringstream& md, const std::vector<JudgedCaseResult>& results, const JudgedPlan& p) {
+  std::vector<std::string> waters;
+  for (const auto& r : results)
+    if (std::find(waters.begin(), waters.end(), r.c.label()) == waters.end()) waters.push_back(r.c.label());
+  md << "## Judged success\n\nTop-1 success: the share of iterations whose best-ranked grasp holds "
+        "(no collision, closes on the object, force closure at mu); an iteration without a grasp is a "
+        "failure. Robust: the share of " << p.robust.samples << " perturbed poses (sigma "
+     << fmt("%.0f mm, %.0f deg", p.robust.sigma_position * 1000, p.robust.sigma_angle * 180 / std::numbers::pi)
+     << ") of the top-1 that still hold at mu " << io::shortest(p.robust.mu)
+     << ", averaged over iterations (0 without a grasp). Precision@10 and AP over the top "
+     << p.summary.top << " as graspnetAPI counts them (missing grasps fail).\n\n";
+  success_header(md, p, "water");
+  for (const auto& w : waters) {
+    std::vector<const JudgedCaseResult*> cs;
+    for (const auto& r : results)
+      if (r.c.label() == w) cs.push_back(&r);
+    success_row(md, w, totals(cs, p), p);
+  }
+  md << "\n";
+  success_header(md, p, "scene, water");
+  for (const auto& r : results) success_row(md, r.c.scene + ", " + r.c.label(), totals({&r}, p), p);
+  md << "\n";
+}
+
+void write_modes(std::ostringstream& md, const std::vector<JudgedCaseResult>& results, const JudgedPlan& p) {
+  std::vector<const JudgedCaseResult*> all;
+  for (const auto& r : results) all.push_back(&r);
+  const Totals t = totals(all, p);
+  md << "## What became of the top-1\n\nOver all " << t.runs << " iterations, at mu "
+     << io::shortest(p.summary.reference_mu) << ". A collision through an unseen surface puts a part in "
+     << "the object's back, which the camera could not see.\n\n| outcome | iterations | share |\n|---|---|---|\n";
+  std::vector<std::pair<std::string, std::size_t>> modes(t.modes.begin(), t.modes.end());
+  std::stable_sort(modes.begin(), modes.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  for (const auto& [m, n] : modes) md << "| " << m << " | " << n << " | " << pct(double(n) / double(t.runs)) << " |\n";
+  md << "\n";
+}
+}  // namespace
+
+void write_judged_calibration(std::ostringstream& md, const std::vector<JudgedCaseResult>& results,
+                              const JudgedPlan& p);
+
+void write_judged_report(const std::string& dir, const std::vector<JudgedCaseResult>& results,
+                         const JudgedPlan& plan, const std::string& command, const std::string& title) {
+  make_output_dir(dir);
+  std::ostringstream md;
+  md << "# " << title << "\n\nEvery iteration renders the scene with the next seed, runs the detector with "
+     << (plan.sets.empty() ? "the default settings" : "the settings below")
+     << " (the object of interest selected as a user would: by its colour) and judges its ranked grasps "
+        "against the objects' full meshes with `uwgrasp evaluate`'s judge (eval/): collision of fingers, "
+        "palm and body with the objects and the seafloor, the pads' closing, force closure on the line of "
+        "action, robustness under pose noise.\n\nMade by:\n\n```\n"
+     << command << "\n```\n\n| | |\n|---|---|\n| uwgrasp | " << UWGRASP_VERSION << " |\n| seed | "
+     << plan.base.seed << " (iteration i uses seed + i) |\n| iterations | " << plan.iterations
+     << " per scene and water |\n";
+  if (!plan.sets.empty()) {
+    md << "| settings |";
+    for (const auto& s : plan.sets) md << " `" << s << "`";
+    md << " |\n";
+  }
+  double seconds = 0;
+  for (const auto& r : results) seconds += r.seconds;
+  md << "| time | " << fmt("%.0f", seconds) << " s |\n\n";
+  write_success(md, results, plan);
+  write_modes(md, results, plan);
+  if (plan.calibrate) write_judged_calibration(md, results, plan);
+  // One figure per scene: its waters side by side.
+  md << "## Figures\n\nThe first iteration of each case: the true scene, the top grasps coloured by "
+        "their judged outcome (green holds, amber closes without force closure, red collides).\n\n";
+  std::map<std::string, std::vector<cv::Mat>> tiles;
+  std::vector<std::string> order;
+  for (const auto& r : results) {
+    if (r.tile.empty()) continue;
+    if (!tiles.count(r.c.scene)) order.push_back(r.c.scene);
+    tiles[r.c.scene].push_back(r.tile);
+  }
+  for (const auto& scene : order) {
+    const std::string file = "judged_" + scene + ".png";
+    write_png((std::filesystem::path(dir) / file).string(), viz::grid(tiles[scene], int(tiles[scene].size())));
+    md << "![" << scene << "](" << file << ")\n\n";
+  }
+  io::write_text((std::filesystem::path(dir) / "report.md").string(), md.str());
+}
+
+}  // namespace uwgrasp::experiments

@@ -1,0 +1,127 @@
+// The judged study (judged_study.hpp): render, detect with the plan's settings, judge.
+#include "experiments/judged_study.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+
+#include "app/common.hpp"
+#include "app/judged_picture.hpp"
+#include "experiments/experiments_report.hpp"
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/sim/scene.hpp"
+
+namespace uwgrasp::experiments {
+
+namespace {
+int interest(const sim::Scene& s) {
+  for (std::size_t i = 0; i < s.objects.size(); ++i)
+    if (s.objects[i].interest) return int(i);
+  throw Error("scene " + s.name + ": the judged study needs an object of interest");
+}
+
+struct Setting {
+  const Simulation& sim;
+  const sim::World& world;
+  int target = 0;
+};
+
+// Judges every grasp beyond the top ones too, for the calibration of the detector's scores.
+void score_outcomes(const Setting& st, const eval::Camera& cam, const grasp::Gripper& g,
+                    const grasp::Detection& d, std::span<const Pose> poses,
+                    const eval::Evaluation& e, double mu, std::vector<ScoredOutcome>& out) {
+  const auto& grasps = d.result.grasps;
+  std::vector<ScoredOutcome> scored(grasps.size());
+  tbb::parallel_for(std::size_t(0), grasps.size(), [&](std::size_t i) {
+    const eval::Judgement j = i < e.judgements.size() ? e.judgements[i]
+                                                      : eval::judge(st.world, cam, g, poses[i], st.target);
+    scored[i] = {grasps[i].scores, grasps[i].friction.mu_required,
+                 j.verdict == eval::Verdict::closes ? j.mu_min : std::numeric_limits<double>::infinity(),
+                 j.holds(mu)};
+  });
+  out.insert(out.end(), scored.begin(), scored.end());
+}
+
+JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed, JudgedCaseResult& out,
+                   bool first) {
+  JudgedRun run;
+  const sim::Frame f = sim::render_rgbd(st.world, st.sim.world_from_camera, st.sim.render, seed);
+  run.visible_points = std::size_t(
+      std::count(f.labels.begin(), f.labels.end(), std::uint16_t(sim::kLabelFirstObject + st.target)));
+  io::Config cfg = plan.base;
+  cfg.seed = seed;
+  use_simulation_frames(cfg, st.sim);
+  if (plan.calibrate) cfg.grasp.score.top = std::max<std::uint32_t>(cfg.grasp.score.top, 1000000);
+  const auto t0 = std::chrono::steady_clock::now();
+  grasp::Detection d;
+  try {
+    d = grasp::detect(f.cloud, cfg.preprocess, cfg.segment, cfg.grasp, seed);
+  } catch (const Error& e) {
+    run.error = e.what();
+    run.summary = eval::summarise({}, plan.summary);
+    return run;
+  }
+  run.detect_ms = ms_since(t0);
+  run.feasible = d.result.feasible();
+  run.object_points = d.object.size();
+  const auto t1 = std::chrono::steady_clock::now();
+  const eval::Camera cam{st.sim.world_from_camera, f.intrinsics, st.sim.render.camera.max_range};
+  const grasp::Gripper g = grasp::make_gripper(cfg.grasp.gripper);
+  std::vector<Pose> poses;
+  for (const auto& gr : d.result.grasps)
+    poses.push_back(st.sim.world_from_camera * grasp::camera_from_gripper(gr, d.result.frames));
+  const eval::Evaluation e = eval::evaluate(st.world, cam, g, poses, st.target, plan.summary, plan.robust, seed);
+  run.summary = e.summary;
+  run.robust = e.robust_top1;
+  run.has_top1 = !e.judgements.empty();
+  if (run.has_top1) run.top1 = e.judgements.front();
+  if (plan.calibrate) score_outcomes(st, cam, g, d, poses, e, plan.summary.reference_mu, out.scored);
+  run.judge_ms = ms_since(t1);
+  if (first) {
+    viz::Picture pic;
+    pic.title = st.sim.scene.name + ", " + out.c.label();
+    pic.legend.push_back(fmt("seed %llu: top %zu of %zu feasible grasps", static_cast<unsigned long long>(seed),
+                             e.judgements.size(), run.feasible));
+    viz::View view;
+    view.width = 800, view.height = 600;
+    out.tile = judged_picture(st.world, cam, g, std::span(poses).first(e.judgements.size()), e.judgements,
+                              st.target, plan.summary.reference_mu, pic, view);
+  }
+  return run;
+}
+}  // namespace
+
+std::vector<std::string> held_in_scenes() {
+  std::vector<std::string> out;
+  for (const auto& n : sim::builtin_scene_names())
+    if (n != "barbell" && n != "ring" && n != "cross" && n != "thesis" && n != "several") out.push_back(n);
+  return out;
+}
+
+std::vector<std::string> thesis_object_scenes() { return {"barbell", "ring", "cross"}; }
+
+std::vector<JudgedCaseResult> run_judged_study(const JudgedPlan& plan) {
+  std::vector<JudgedCaseResult> results;
+  for (const JudgedCase& c : plan.cases) {
+    io::Config cfg = plan.base;
+    cfg.sim.noise.enabled = c.noise;
+    const Simulation s = make_simulation(cfg, c.scene, c.water);
+    const sim::World world(s.scene);
+    const Setting st{s, world, interest(s.scene)};
+    JudgedCaseResult r;
+    r.c = c;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < plan.iterations; ++i) {
+      std::cerr << "uwgrasp experiments [judged] " << c.scene << ", " << c.label() << ": iteration " << i + 1
+                << "/" << plan.iterations << std::endl;
+      r.runs.push_back(run_once(st, plan, plan.base.seed + std::uint64_t(i), r, i == 0));
+    }
+    r.seconds = ms_since(t0) / 1000.0;
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
+}  // namespace uwgrasp::experiments

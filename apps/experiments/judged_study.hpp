@@ -1,0 +1,76 @@
+#pragma once
+// The judged study: the detector with the default settings (or any --config/--set) on scenes
+// it was not tuned on, each iteration a new seed (sensor noise, marine snow, sampling), every
+// top grasp judged against the full shapes (eval/): top-1 success, robust success, precision@k,
+// AP and the outcome mix per scene and water, and how well the detector's own scores predict the
+// judged outcome (calibration) over every feasible candidate.
+#include <opencv2/core.hpp>
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "experiments/experiments.hpp"
+#include "uwgrasp/eval/calibration.hpp"
+#include "uwgrasp/eval/evaluate.hpp"
+
+namespace uwgrasp::experiments {
+
+struct JudgedCase {
+  std::string scene;  // built-in name or scene file
+  std::string water;  // preset
+  bool noise = false; // realistic sensor (noise, dropouts, marine snow)
+  std::string label() const { return water + (noise ? "" : " (perfect sensor)"); }
+};
+
+struct JudgedPlan {
+  io::Config base;                // the session's config: what the detector runs with
+  std::vector<std::string> sets;  // --set overrides (for the report)
+  int iterations = 20;
+  std::vector<JudgedCase> cases;
+  eval::SummaryConfig summary;
+  eval::RobustConfig robust;
+  bool calibrate = true;          // judge every feasible candidate, not only the top ones
+};
+
+// One iteration of one case.
+struct JudgedRun {
+  std::string error;          // detection stopped with this Error ("" when it ran)
+  std::size_t feasible = 0;
+  std::size_t object_points = 0, visible_points = 0;  // detected object vs its visible pixels
+  eval::Summary summary;      // over the top grasps
+  double robust = std::numeric_limits<double>::quiet_NaN();
+  bool has_top1 = false;
+  eval::Judgement top1;
+  double detect_ms = 0, judge_ms = 0;
+};
+
+// A feasible candidate's own scores beside its judged outcome at the reference mu.
+struct ScoredOutcome {
+  grasp::Scores scores;
+  double mu_required = 0;  // the detector's own antipodal estimate (+inf: none)
+  double mu_min = 0;       // the judge's (+inf when it does not close)
+  bool holds = false;
+};
+
+struct JudgedCaseResult {
+  JudgedCase c;
+  std::vector<JudgedRun> runs;
+  std::vector<ScoredOutcome> scored;  // every feasible candidate of every iteration
+  cv::Mat tile;                       // the first iteration's judged grasps on the truth
+  double seconds = 0;
+};
+
+std::vector<JudgedCaseResult> run_judged_study(const JudgedPlan& plan);
+
+// The built-in scenes of real objects (every pose), and of the thesis's objects alone.
+std::vector<std::string> held_in_scenes();
+std::vector<std::string> thesis_object_scenes();
+
+// DIR/report.md with tables, calibration and one figure per object; `command` made it.
+void write_judged_report(const std::string& dir, const std::vector<JudgedCaseResult>& results,
+                         const JudgedPlan& plan, const std::string& command, const std::string& title);
+
+}  // namespace uwgrasp::experiments
