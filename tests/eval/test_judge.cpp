@@ -86,6 +86,24 @@ TEST(Judge, BoxTurned30DegreesNeedsMuOfTan30) {
   EXPECT_TRUE(j.holds(0.6));
 }
 
+// A cylinder grasped off its axis: the pads press where they touch it, at its widest chord, so
+// the line of action runs through the axis and the grasp holds (Dex-Net's line through the
+// grasp centre would cross the cylinder 8 mm off its axis, at 32 degrees to its surface).
+TEST(Judge, CylinderGraspedOffItsAxisHoldsWhereThePadsPress) {
+  const V3 approach = kDown, closing = V3::UnitY();
+  Pose cyl = at(V3(0, 0, 0.3));
+  cyl.linear() = Eigen::AngleAxisd(kPi / 2, V3::UnitY()).toRotationMatrix();  // axis along W x (G's z)
+  sim::Scene s = scene({});
+  s.objects.push_back({"tube", {{sim::Shape{.kind = sim::ShapeKind::cylinder, .radius = 0.015, .length = 0.2}, Pose::Identity()}},
+                       cyl, {200, 30, 30}, false});
+  const sim::World w(s);
+  const Judgement j = judge(w, camera_along_x(), kGripper, grasp_at(V3(0, 0, 0.3) - 0.008 * approach, approach, closing), 0);
+  ASSERT_EQ(j.verdict, Verdict::closes) << verdict_name(j.verdict);
+  EXPECT_NEAR(j.width, 0.03, 2e-4);
+  EXPECT_LT(j.mu_min, std::tan(4.0 * kPi / 180));  // the 48-facet tessellation's slack
+  EXPECT_NEAR(j.contacts[0].z(), 0.3, 1e-3);         // on the axis's height, not 8 mm off it
+}
+
 TEST(Judge, FingerInsideTheBoxIsACollisionNamingThatFinger) {
   // A 70 x 30 x 30 mm block around the left finger (50 x 10 x 15 mm): no surface crosses it.
   const Pose T = grasp_at(V3(0, 0, 0.3), kDown, V3::UnitY());

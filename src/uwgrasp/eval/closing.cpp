@@ -24,43 +24,91 @@ std::vector<double> steps(double half, double spacing) {
   return v;
 }
 
-// Where a pad first touches: its travel from its start and what it touches.
+// Where a pad first touches: its travel from its start, what it touches, and the centre of its
+// contact patch (x, z on the pad).
 struct Touch {
   double t = std::numeric_limits<double>::infinity();
   int object = sim::kNoObject;
+  Eigen::Vector2d patch = Eigen::Vector2d::Zero();
   bool found() const { return object != sim::kNoObject; }
 };
 
+using Polygon = std::vector<V3>;
+
+// The part of a polygon (gripper frame) with sign * y <= bound.
+Polygon clip_y(const Polygon& poly, double bound, double sign) {
+  Polygon out;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const V3& a = poly[i];
+    const V3& b = poly[(i + 1) % poly.size()];
+    const double da = bound - sign * a.y(), db = bound - sign * b.y();
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+// The centre of the surface a pad touches within the compliance of its first touch: the
+// centroid of that surface projected on the pad (area-weighted), or of its vertices when it is
+// edge-on to the pad.
+Eigen::Vector2d patch_centre(std::span<const sim::ClippedTriangle> pieces, int target, double bound,
+                             double sign) {
+  double area = 0;
+  Eigen::Vector2d weighted = Eigen::Vector2d::Zero(), vertices = Eigen::Vector2d::Zero();
+  std::size_t count = 0;
+  for (const sim::ClippedTriangle& c : pieces) {
+    if (c.object != target) continue;
+    const Polygon band = clip_y(c.polygon, bound, sign);
+    for (std::size_t i = 0; i < band.size(); ++i) {
+      const Eigen::Vector2d a(band[i].x(), band[i].z()), b(band[(i + 1) % band.size()].x(), band[(i + 1) % band.size()].z());
+      const double cross = a.x() * b.y() - b.x() * a.y();  // shoelace: signed area and centroid
+      area += 0.5 * cross;
+      weighted += (a + b) * cross / 6.0;
+      vertices += a, ++count;
+    }
+  }
+  if (std::abs(area) > 1e-12) return weighted / area;
+  return count > 0 ? Eigen::Vector2d(vertices / double(count)) : Eigen::Vector2d::Zero();
+}
+
 // The exact stop of both pads: the surfaces clipped to the pads' sweep (gripper frame), whose
-// lowest point along y is where the left pad first touches and highest where the right one does.
-// Ties go to the first piece in the clip order (by object, then triangle).
-std::array<Touch, 2> first_touches(std::span<const sim::ClippedTriangle> pieces, double start) {
+// lowest point along y is where the left pad first touches and highest where the right one does
+// (ties to the first piece in the clip order: by object, then triangle), with each contact
+// patch's centre when the pad touches the target.
+std::array<Touch, 2> first_touches(std::span<const sim::ClippedTriangle> pieces, double start,
+                                   int target, double compliance) {
   std::array<Touch, 2> best;
   for (const sim::ClippedTriangle& c : pieces)
     for (const V3& p : c.polygon) {
       if (p.y() + start < best[0].t) best[0] = {p.y() + start, c.object};
       if (start - p.y() < best[1].t) best[1] = {start - p.y(), c.object};
     }
+  if (best[0].object == target)
+    best[0].patch = patch_centre(pieces, target, best[0].t - start + compliance, 1.0);
+  if (best[1].object == target)
+    best[1].patch = patch_centre(pieces, target, best[1].t - start + compliance, -1.0);
   return best;
 }
 
-// Pad lines (x, z) ordered by distance from the pads' centre, ties in grid order.
-std::vector<Eigen::Vector2d> lines_by_distance(const PadGrid& grid) {
+// `first`, then the pad lines (x, z) ordered by distance from it, ties in grid order.
+std::vector<Eigen::Vector2d> lines_from(const Eigen::Vector2d& first, const PadGrid& grid) {
   std::vector<Eigen::Vector2d> lines;
   for (const double x : grid.x)
     for (const double z : grid.z) lines.emplace_back(x, z);
-  std::stable_sort(lines.begin(), lines.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.squaredNorm() < b.squaredNorm();
+  std::stable_sort(lines.begin(), lines.end(), [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - first).squaredNorm() < (b - first).squaredNorm();
   });
+  lines.insert(lines.begin(), first);
   return lines;
 }
 
-// The line of action: the pad line nearest the pads' centre that meets the target from both
-// sides (rays from either pad's face along the closing axis), with its two hits; false when no
-// line does. The central line is tried alone first: it is the answer for most grasps.
+// The line of action along the closing axis: through the midpoint of the pads' contact patches
+// (where the grip's force acts: Dex-Net's line through the grasp centre, moved to where the
+// object is), or the pad line nearest it that meets the target from both sides; with its two
+// hits, false when no line does. That line is tried alone first: it is the answer for most grasps.
 bool line_of_action(const sim::World& world, const Pose& T, double start, const PadGrid& grid,
-                    int target, sim::RayHit& left, sim::RayHit& right) {
-  const std::vector<Eigen::Vector2d> lines = lines_by_distance(grid);
+                    const Eigen::Vector2d& centre, int target, sim::RayHit& left, sim::RayHit& right) {
+  const std::vector<Eigen::Vector2d> lines = lines_from(centre, grid);
   const V3 y = T.linear().col(1);
   for (std::size_t first = 0, count = 1; first < lines.size(); first += count, count = lines.size() - first) {
     std::vector<sim::Ray> rays;
@@ -91,7 +139,8 @@ void close_pads(const sim::World& world, const grasp::Gripper& gripper, const Po
   const sim::OrientedBox sweep{
       T.translation(), T.linear(),
       V3(std::max(0.0, 0.5 * gc.finger_length - tol), start, std::max(0.0, 0.5 * gc.finger_height - tol))};
-  const auto [tl, tr] = first_touches(sim::clip_to_box(world, sweep, true), start);
+  const std::vector<sim::ClippedTriangle> pieces = sim::clip_to_box(world, sweep, true);
+  const auto [tl, tr] = first_touches(pieces, start, target, cfg.compliance);
   j = Judgement{};
   if (!tl.found() || !tr.found()) {
     j.verdict = Verdict::miss;
@@ -117,7 +166,7 @@ void close_pads(const sim::World& world, const grasp::Gripper& gripper, const Po
   const PadGrid grid{steps(0.5 * gc.finger_length, cfg.pad_spacing),
                      steps(0.5 * gc.finger_height, cfg.pad_spacing)};
   sim::RayHit cl, cr;
-  if (!line_of_action(world, T, start, grid, target, cl, cr)) {
+  if (!line_of_action(world, T, start, grid, 0.5 * (tl.patch + tr.patch), target, cl, cr)) {
     j.verdict = Verdict::miss;  // the pads touch the target only where no line crosses it twice
     return;
   }

@@ -11,8 +11,10 @@
 //  3. force closure of the two contacts under Coulomb friction (Nguyen 1988; Murray, Li &
 //     Sastry 5.2, the condition of thesis 6.4): the line between the contacts lies in both
 //     friction cones. As in Dex-Net and graspnetAPI, the contacts lie on one line of action
-//     along the closing axis - the one through the pads' centre, or the pad line nearest it that
-//     meets the target on both sides - with the object's surface normals there;
+//     along the closing axis, with the object's surface normals there. Dex-Net's line runs
+//     through the grasp centre; here it runs through the midpoint of the two pads' contact
+//     patches (the surface within `compliance` of each pad's first touch), i.e. through where
+//     the pads actually press - on a cylinder grasped off-centre, through its axis;
 //  4. robust force closure (Dex-Net's robustness under pose noise): the share of seeded
 //     perturbed poses that still hold.
 #include <Eigen/Core>
@@ -36,7 +38,8 @@ struct Camera {
 
 struct JudgeConfig {
   double tolerance = 0.001;    // m: parts may sink this far into a surface (positioning slack)
-  double pad_spacing = 0.002;  // m between the closing rays on a finger pad
+  double pad_spacing = 0.002;  // m between the fallback lines of action on a finger pad
+  double compliance = 0.0005;  // m the pads give: surface this close to a first touch presses too
   double visibility_tolerance = 0.002;  // m: a surface point is seen if nothing is this much nearer
 };
 
