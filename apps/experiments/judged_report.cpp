@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <cstring>
 #include <map>
+#include <set>
 #include <numbers>
 #include <sstream>
 
@@ -145,20 +147,26 @@ void write_judged_report(const std::string& dir, const std::vector<JudgedCaseRes
   write_success(md, results, plan);
   write_modes(md, results, plan);
   if (plan.calibrate) write_judged_calibration(md, results, plan);
-  // One figure per scene: its waters side by side.
+  // One figure per object: a row per pose, its waters side by side.
   md << "## Figures\n\nThe first iteration of each case: the true scene, the top grasps coloured by "
-        "their judged outcome (green holds, amber closes without force closure, red collides).\n\n";
+        "their judged outcome (green holds, amber closes without force closure, red collides); a row per "
+        "scene, a column per water.\n\n";
   std::map<std::string, std::vector<cv::Mat>> tiles;
+  std::map<std::string, std::set<std::string>> waters;
   std::vector<std::string> order;
   for (const auto& r : results) {
     if (r.tile.empty()) continue;
-    if (!tiles.count(r.c.scene)) order.push_back(r.c.scene);
-    tiles[r.c.scene].push_back(r.tile);
+    std::string object = r.c.scene;
+    for (const char* pose : {"_lying", "_turned"})
+      if (object.ends_with(pose)) object.resize(object.size() - std::strlen(pose));
+    if (!tiles.count(object)) order.push_back(object);
+    tiles[object].push_back(r.tile);
+    waters[object].insert(r.c.label());
   }
-  for (const auto& scene : order) {
-    const std::string file = "judged_" + scene + ".png";
-    write_png((std::filesystem::path(dir) / file).string(), viz::grid(tiles[scene], int(tiles[scene].size())));
-    md << "![" << scene << "](" << file << ")\n\n";
+  for (const auto& object : order) {
+    const std::string file = "judged_" + object + ".png";
+    write_png((std::filesystem::path(dir) / file).string(), viz::grid(tiles[object], int(waters[object].size())));
+    md << "![" << object << "](" << file << ")\n\n";
   }
   io::write_text((std::filesystem::path(dir) / "report.md").string(), md.str());
 }

@@ -85,7 +85,7 @@ JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed
     pic.legend.push_back(fmt("seed %llu: top %zu of %zu feasible grasps", static_cast<unsigned long long>(seed),
                              e.judgements.size(), run.feasible));
     viz::View view;
-    view.width = 800, view.height = 600;
+    view.width = 640, view.height = 480;
     out.tile = judged_picture(st.world, cam, g, std::span(poses).first(e.judgements.size()), e.judgements,
                               st.target, plan.summary.reference_mu, pic, view);
   }

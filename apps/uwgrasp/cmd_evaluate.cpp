@@ -68,10 +68,13 @@ std::string detail(const eval::Judgement& j, const sim::Scene& s) {
   return "";
 }
 
-json judgement_json(const eval::Judgement& j, const io::GraspList::Entry& g, double mu_ref,
+json judgement_json(const eval::Judgement& j, const io::GraspList::Entry& g, const eval::SummaryConfig& sc,
                     const sim::Scene& s) {
   json o = {{"rank", g.rank}, {"score", g.score}, {"verdict", eval::verdict_name(j.verdict)},
-            {"outcome", eval::outcome_name(eval::outcome(j, mu_ref))}};
+            {"outcome", eval::outcome_name(eval::outcome(j, sc.reference_mu))}};
+  json holds = json::object();
+  for (const double mu : sc.mu) holds[io::shortest(mu)] = j.holds(mu);
+  o["holds"] = holds;
   const auto vec = [](const Eigen::Vector3d& v) { return json{v.x(), v.y(), v.z()}; };
   if (j.verdict == eval::Verdict::collision) {
     o["part"] = grasp::part_name(grasp::Part(j.part));
@@ -175,7 +178,7 @@ int run_evaluate(const EvaluateOptions& o) {
               {"top", sc.top}, {"seed", session.config.seed}, {"summary", summary_json(e, sc, rc)}};
     j["judgements"] = json::array();
     for (std::size_t i = 0; i < e.judgements.size(); ++i)
-      j["judgements"].push_back(judgement_json(e.judgements[i], list.grasps[i], sc.reference_mu, truth.scene));
+      j["judgements"].push_back(judgement_json(e.judgements[i], list.grasps[i], sc, truth.scene));
     io::write_json(o.json_out, j);
   }
   if (!o.png.empty()) {
