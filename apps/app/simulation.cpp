@@ -68,6 +68,11 @@ io::Config object_config(const Simulation& s, const sim::Frame& f, std::size_t i
                          const std::vector<std::string>& sets, std::uint64_t seed) {
   const std::string& name = s.scene.objects.at(i).name;
   io::Config cfg = io::load_config(preset_path("thesis_" + (name == "ring" ? "circle" : name) + ".yaml"), sets);
+  return pointed_at(std::move(cfg), s, f, i, seed);
+}
+
+io::Config pointed_at(io::Config cfg, const Simulation& s, const sim::Frame& f, std::size_t i,
+                      std::uint64_t seed) {
   cfg.seed = seed;
   use_simulation_frames(cfg, s);
   cfg.segment.object.by = segment::ObjectBy::point;

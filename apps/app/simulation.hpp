@@ -46,6 +46,10 @@ Eigen::Vector3d visible_centroid(const sim::Frame& f, const Simulation& s, std::
 // objects).
 io::Config object_config(const Simulation& s, const sim::Frame& f, std::size_t i,
                          const std::vector<std::string>& sets, std::uint64_t seed);
+// `cfg` with the simulation's frames and the seed, selecting the object nearest the centroid
+// of object i's visible points (the detector's own settings otherwise).
+io::Config pointed_at(io::Config cfg, const Simulation& s, const sim::Frame& f, std::size_t i,
+                      std::uint64_t seed);
 
 // The wireframe of a gripper (fingers, palm and, with `body`, the body behind the palm) at pose
 // T (gripper frame in the picture's frame).

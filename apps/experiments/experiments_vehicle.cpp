@@ -62,7 +62,8 @@ double saturation_angle(const vehicle::VehicleParams& p, const vehicle::Allocato
 VehicleRun run_vehicle(const grasp::Detection& d, const grasp::Grasp& g, const io::Config& cfg) {
   VehicleRun v;
   const grasp::Gripper gripper = grasp::make_gripper(cfg.grasp.gripper);
-  const grasp::Obstacles o = grasp::make_obstacles(grasp::surroundings(d.scene), d.result.frames);
+  std::vector<Eigen::Vector3f> points;
+  const grasp::Obstacles o = grasp::make_obstacles(grasp::surroundings(d.scene, points), d.result.frames);
   const auto solids = grasp::vehicle_solids(gripper, d.result.frames, cfg.grasp.reach);
   grasp::Candidate c;
   c.position = g.level_from_gripper.translation().cast<float>();

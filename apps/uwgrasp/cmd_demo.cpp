@@ -1,6 +1,7 @@
 // uwgrasp demo [--out DIR]: the embedded default. Simulates the thesis scene (seafloor, barbell,
-// ring on a pole, cross; Figure 8.1), detects grasps on each object with its Table 8.5 preset,
-// writes grasps.json and grasps.png, and prints the best grasp per object.
+// ring on a pole, cross; Figure 8.1), detects grasps on each object with the session's settings
+// (the defaults; --thesis: its Table 8.5 preset), writes grasps.json and grasps.png, and prints
+// the best grasp per object.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +22,7 @@ struct DemoOptions {
   std::string out = "uwgrasp-demo";
   std::string water = "clear";
   bool noise = false;
+  bool thesis = false;  // each object's Table 8.5 preset instead of the session's settings
 };
 
 struct ObjectRun {
@@ -31,10 +33,10 @@ struct ObjectRun {
 };
 
 ObjectRun detect_object(const Simulation& s, const sim::Frame& f, std::size_t i, const DemoOptions& o,
-                        std::uint64_t seed) {
+                        const io::Config& session, std::uint64_t seed) {
   ObjectRun run;
   run.name = s.scene.objects[i].name;
-  run.cfg = object_config(s, f, i, o.common.sets, seed);
+  run.cfg = o.thesis ? object_config(s, f, i, o.common.sets, seed) : pointed_at(session, s, f, i, seed);
   const auto t0 = std::chrono::steady_clock::now();
   run.d = grasp::detect(f.cloud, run.cfg.preprocess, run.cfg.segment, run.cfg.grasp, seed);
   run.ms = ms_since(t0);
@@ -90,7 +92,7 @@ int run_demo(const DemoOptions& o) {
   std::vector<ObjectRun> runs;
   for (std::size_t i = 0; i < s.scene.objects.size(); ++i) {
     progress("uwgrasp demo: detecting grasps on the " + s.scene.objects[i].name);
-    runs.push_back(detect_object(s, f, i, o, seed));
+    runs.push_back(detect_object(s, f, i, o, session.config, seed));
   }
   make_output_dir(o.out);
   const auto path = [&](const std::string& n) { return (std::filesystem::path(o.out) / n).string(); };
@@ -130,6 +132,7 @@ void add_demo_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& 
   cmd->add_option("--water", o->water, "Water preset")->check(CLI::IsMember({"clear", "coastal", "turbid"}))
       ->capture_default_str();
   cmd->add_flag("--noise", o->noise, "Depth noise, dropouts and marine snow (default: the thesis's perfect sensor)");
+  cmd->add_flag("--thesis", o->thesis, "Detect with each object's Table 8.5 preset (config/thesis_*.yaml)");
   add_common(*cmd, o->common);
   runners.emplace_back(cmd, [o] { return run_demo(*o); });
 }

@@ -79,6 +79,11 @@ void print_best(const grasp::Grasp& g, const grasp::Frames& f, const grasp::Scor
               g.scores.contact_right, g.scores.inliers);
   std::printf("  width %.4f m, %zu inliers, %s for mu %.2f (needs mu >= %.3f)\n", g.width,
               g.inliers, g.friction.ok ? "antipodal" : "not antipodal", s.mu, g.friction.mu_required);
+  if (s.mode == grasp::ScoreMode::robust)
+    std::printf("  on the object's model: holds at mu %.2f in %.0f %% of %u poses perturbed by %.0f mm and "
+                "%.0f deg (q_fc %.3f); contacts %s and %s\n", s.robust.mu, 100 * g.robustness,
+                s.robust.samples, 1000 * s.robust.sigma_position, s.robust.sigma_angle * 180 / std::numbers::pi,
+                g.force_closure, g.contact_seen[0] ? "seen" : "unseen", g.contact_seen[1] ? "seen" : "unseen");
 }
 
 void print_detection(const std::string& name, const grasp::Detection& d, const io::Config& cfg) {
@@ -98,13 +103,13 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
     std::printf("no feasible grasp\n");
   } else {
     print_best(r.grasps.front(), r.frames, cfg.grasp.score);
-    std::printf("  rank  score  normal orient  c_left c_right inliers  width m  vehicle r/p/y deg   hold %%\n");
+    std::printf("  rank  score  robust   q_fc  mu_req orient  inliers  width m  vehicle r/p/y deg   hold %%\n");
     for (std::size_t i = 0; i < r.grasps.size(); ++i) {
       const auto& g = r.grasps[i];
       std::printf("  %4zu  %5.3f  %6.3f %6.3f  %6.3f %6.3f  %6.3f  %7.4f  %6.1f %6.1f %6.1f  %6.1f\n", i + 1,
-                  g.scores.total, g.scores.normal, g.scores.orientation, g.scores.contact_left,
-                  g.scores.contact_right, g.scores.inliers, g.width, deg(g.vehicle_rpy.x()),
-                  deg(g.vehicle_rpy.y()), deg(g.vehicle_rpy.z()), 100 * g.hold_cost);
+                  g.scores.total, g.robustness, g.force_closure, g.friction.mu_required, g.scores.orientation,
+                  g.scores.inliers, g.width, deg(g.vehicle_rpy.x()), deg(g.vehicle_rpy.y()),
+                  deg(g.vehicle_rpy.z()), 100 * g.hold_cost);
     }
   }
   std::printf("stage times (ms):");
@@ -119,7 +124,7 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
   cmd->add_option("CLOUD", o->cloud, ".pcd or .ply cloud in the camera optical frame")->required();
   cmd->add_option("--object", o->object, "Object of interest: color:NAME, label:N, point:X,Y,Z (camera frame), nearest, largest");
   cmd->add_option("--sampler", o->sampler, "Candidate sampler")
-      ->check(CLI::IsMember({"uniform", "normal", "surface", "auto"}));
+      ->check(CLI::IsMember({"antipodal", "uniform", "normal", "surface", "auto"}));
   cmd->add_option("--samples", o->samples, "Number of candidates")->check(CLI::Range(1, 100000000));
   cmd->add_option("--top", o->top, "Grasps kept after ranking")->check(CLI::Range(1, 1000000));
   cmd->add_option("--json", o->json, "Write grasps.json (INTERFACE.md) here");

@@ -1,6 +1,7 @@
 // The round trip a user makes: simulate a scene, detect grasps on its cloud, write grasps.json
 // in the camera frame, read it back and judge it in the world. With the perfect sensor in clear
-// water the contacts the detector wrote lie on the true mesh.
+// water the contacts the detector wrote on the camera's points lie on the true mesh; those it
+// predicted on the unseen part lie within the model's voxels of it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -37,24 +38,26 @@ Detected detect_on(const std::string& scene_name) {
 }
 
 TEST(DetectThenJudge, ContactsFromGraspsJsonLieOnTheTrueMesh) {
+  std::size_t checked = 0;  // contacts on the camera's points
   for (const std::string name : {"barbell", "ring", "cross"}) {
     const Detected d = detect_on(name);
     const sim::World world(d.scene);
     std::ifstream in(d.json_path);
     const nlohmann::json j = nlohmann::json::parse(in);
     ASSERT_FALSE(j["grasps"].empty()) << name;
-    std::size_t checked = 0;
     for (const auto& g : j["grasps"])
-      for (const auto& c : g["contacts"]) {
+      for (int side = 0; side < 2; ++side) {
+        const auto& c = g["contacts"][side];
         const Eigen::Vector3d p_c(c[0].get<double>(), c[1].get<double>(), c[2].get<double>());
         const Eigen::Vector3d p_w = d.frame.world_from_camera * p_c;
         const sim::NearestSurface n = sim::nearest_surface(world, p_w, 0.05);
         ASSERT_EQ(n.object, 0) << name;
-        EXPECT_LT(n.distance, 0.001) << name << " contact " << p_w.transpose();
-        ++checked;
+        const bool seen = g["contact_seen"][side].get<bool>();
+        EXPECT_LT(n.distance, seen ? 0.001 : 0.01) << name << " contact " << p_w.transpose();
+        checked += seen;
       }
-    EXPECT_GE(checked, 2u);
   }
+  EXPECT_GE(checked, 10u);
 }
 
 // The grasps read back and put in the world through the camera pose are judged there: every

@@ -21,20 +21,6 @@ const char* verdict_name(Verdict v) {
   return names[static_cast<int>(v)];
 }
 
-double force_closure_mu(const Eigen::Vector3d& c_left, const Eigen::Vector3d& n_left,
-                        const Eigen::Vector3d& c_right, const Eigen::Vector3d& n_right,
-                        const Eigen::Vector3d& closing) {
-  Eigen::Vector3d line = c_right - c_left;
-  line = line.norm() > 1e-6 ? line.normalized() : closing.normalized();
-  // Each finger pushes along the line into the object, against the outward normal there.
-  const auto angle = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    return std::atan2(a.cross(b).norm(), a.dot(b));
-  };
-  const double worst = std::max(angle(line, -n_left.normalized()), angle(-line, -n_right.normalized()));
-  if (worst >= 0.5 * std::numbers::pi - 1e-12) return std::numeric_limits<double>::infinity();
-  return std::tan(worst);
-}
-
 Judgement judge(const sim::World& world, const Camera& camera, const grasp::Gripper& gripper,
                 const Pose& T, int target, const JudgeConfig& cfg) {
   const int objects = static_cast<int>(world.scene().objects.size());

@@ -25,6 +25,7 @@
 
 #include "uwgrasp/core/pose.hpp"
 #include "uwgrasp/grasp/gripper.hpp"
+#include "uwgrasp/grasp/metrics.hpp"
 #include "uwgrasp/sim/query.hpp"
 
 namespace uwgrasp::eval {
@@ -72,12 +73,9 @@ struct Judgement {
 Judgement judge(const sim::World& world, const Camera& camera, const grasp::Gripper& gripper,
                 const Pose& world_from_gripper, int target, const JudgeConfig& cfg = {});
 
-// The smallest mu for which contacts (c, outward n) on the left and right are in force
-// closure: tan of the larger angle between the contact line and either inward normal; +inf when
-// an angle reaches 90 degrees. `closing` stands in for the line when the contacts coincide.
-double force_closure_mu(const Eigen::Vector3d& c_left, const Eigen::Vector3d& n_left,
-                        const Eigen::Vector3d& c_right, const Eigen::Vector3d& n_right,
-                        const Eigen::Vector3d& closing);
+// The force-closure condition is the grasp engine's own (grasp/metrics.hpp), so that the
+// detector's predictions and the judge agree on what holds.
+using grasp::force_closure_mu;
 
 struct RobustConfig {
   std::uint32_t samples = 25;

@@ -4,12 +4,15 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <numeric>
 #include <cmath>
 #include <exception>
 #include <string>
 
 #include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/segment/objects.hpp"
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/robust.hpp"
 
 namespace uwgrasp::grasp {
 
@@ -22,13 +25,34 @@ LevelCloud to_level(const Cloud& object, const Frames& f) {
   return {points_to_level(object.points, f), directions_to_level(object.normals, f)};
 }
 
-std::vector<Candidate> sample(SamplerKind kind, const LevelCloud& l, const GraspConfig& cfg,
+// What the samplers draw from: the visible points (L), the object's model (its visible points
+// and unseen surface, L) and its shape.
+struct SampleInputs {
+  const LevelCloud& l;
+  const LevelCloud& model;
+  const ObjectShape& shape;
+  const Gripper& gripper;  // as checked (grown by the margin)
+};
+
+std::vector<Candidate> sample(SamplerKind kind, const SampleInputs& in, const GraspConfig& cfg,
                               const Frames& f, std::uint64_t seed, std::uint32_t count,
                               std::uint32_t first) {
   const Eigen::Matrix3d R_BG = f.body_from_gripper.linear();
+  const LevelCloud& l = in.l;
   switch (kind) {
     case SamplerKind::uniform: return sample_uniform(l.points, cfg.sampler, R_BG, seed, count, first);
     case SamplerKind::surface: return sample_surface(l.points, l.normals, cfg.sampler, seed, count, first);
+    case SamplerKind::antipodal:
+      // Without the object's shape there is no far side to find: the surface sampler instead.
+      if (in.shape.empty()) return sample_surface(l.points, l.normals, cfg.sampler, seed, count, first);
+    {
+      const Box& palm = in.gripper.solids[int(Part::palm)];
+      // From every surface the model has, unseen ones included: a bar seen end-on from above
+      // shows no side to close on, its model does.
+      return sample_antipodal(in.model.points, in.model.normals, in.shape, cfg.sampler, R_BG,
+                              max_grasp_width(in.gripper),
+                              -palm.hi.x(), palm.half().y(), palm.half().z(), seed, count, first);
+    }
     default: return sample_normal(l.points, cfg.sampler, R_BG, seed, count, first);
   }
 }
@@ -98,6 +122,68 @@ PointBvh build_inputs(const LevelCloud& l, const Cloud& object, const Gripper& g
   return bvh;
 }
 
+// Feasible candidates with a solid part wholly inside the object's shape (its centre in an
+// occupied voxel, no surface point inside it) collide with the part named.
+void reject_inside(const ObjectShape& shape, const Gripper& g, Pool& pool) {
+  tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
+    if (!pool.checks[i].feasible()) return;
+    const Candidate& c = pool.candidates[i];
+    for (int part = 0; part < kParts; ++part)
+      if (shape.occupied(c.rotation * g.solids[std::size_t(part)].centre() + c.position)) {
+        pool.checks[i].reason = static_cast<Reject>(int(Reject::collision_left_finger) + part);
+        return;
+      }
+  });
+}
+
+// The object's visible points and, with the shape on, its unseen surface; and the gripper the
+// check uses: grown by the margin the surface's noise asks for.
+struct Model {
+  LevelCloud cloud;
+  Gripper gripper;
+};
+Model object_model(const LevelCloud& l, const Cloud& object, const Gripper& g, const GraspConfig& cfg,
+                   const Surroundings* around, ObjectGrasps& out) {
+  Model m{l, g};
+  if (!cfg.shape.enabled) return m;
+  const auto floor = around ? level_plane(*around, out.frames) : std::nullopt;
+  out.shape = complete_shape(l.points, object.points, out.frames, floor, cfg.shape);
+  m.cloud.points.insert(m.cloud.points.end(), out.shape.points.begin(), out.shape.points.end());
+  m.cloud.normals.insert(m.cloud.normals.end(), out.shape.normals.begin(), out.shape.normals.end());
+  m.gripper = grow_solids(g, std::max(cfg.shape.min_margin, cfg.shape.margin_sigmas * out.shape.noise));
+  return m;
+}
+
+// The robust mode's scoring (score.hpp): predicted contacts for every feasible candidate, the
+// robustness of the best predicted, then the ranking.
+std::vector<Grasp> score_robust(const ModelView& view, const LevelCloud& cloud, Pool& pool,
+                                const ObjectGrasps& out, const ScoreConfig& cfg, std::uint64_t seed,
+                                StageTimer& timer) {
+  std::vector<ContactPrediction> predicted(pool.candidates.size());
+  tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
+    if (pool.checks[i].feasible()) predicted[i] = predict(view, pool.candidates[i]);
+  });
+  std::vector<Grasp> all = score_all(cloud.points, cloud.normals, pool.candidates, pool.checks,
+                                     out.frames, cfg, out.max_inliers, predicted);
+  timer.start("robust");
+  std::vector<std::size_t> order(all.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  const std::size_t m = std::min<std::size_t>(cfg.robust.candidates, order.size());
+  std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(m), order.end(), [&](std::size_t a, std::size_t b) {
+    return all[a].scores.total != all[b].scores.total ? all[a].scores.total > all[b].scores.total : a < b;
+  });
+  std::vector<std::uint32_t> which;
+  for (std::size_t k = 0; k < m; ++k) which.push_back(all[order[k]].candidate);
+  const std::vector<float> share = robustness(view, pool.candidates, which, cfg.robust, seed);
+  for (std::size_t k = 0; k < m; ++k) {
+    Grasp& g = all[order[k]];
+    g.robustness = share[k];
+    g.scores.total = robust_total(g);
+  }
+  rank(all, cfg.top);
+  return all;
+}
+
 // Feasible candidates with a solid part in the object's shadow become `occluded`.
 void reject_occluded(const Shadow& shadow, const Frames& f, const OcclusionConfig& cfg, Pool& pool) {
   const DepthMap& map = shadow.map;
@@ -123,7 +209,7 @@ void reject_unreachable(const Cloud& object, const Surroundings* around, const G
 
 // automatic: a pilot share on each sampler, then the rest of the budget on the one that found
 // the most feasible candidates (ties: normal, uniform, surface - the thesis's order of use).
-SamplerKind run_auto(const LevelCloud& l, const GraspConfig& cfg, const Frames& f,
+SamplerKind run_auto(const SampleInputs& in, const GraspConfig& cfg, const Frames& f,
                      const Gripper& g, const PointBvh& bvh, std::uint64_t seed, StageTimer& timer,
                      Pool& pool) {
   const auto n = cfg.sampler.samples;
@@ -132,7 +218,7 @@ SamplerKind run_auto(const LevelCloud& l, const GraspConfig& cfg, const Frames& 
   std::size_t best_feasible = 0;
   for (SamplerKind k : {SamplerKind::normal, SamplerKind::uniform, SamplerKind::surface}) {
     timer.start("sample");
-    auto c = sample(k, l, cfg, f, seed, pilot, 0);
+    auto c = sample(k, in, cfg, f, seed, pilot, 0);
     timer.start("check");
     auto checks = check_candidates(bvh, g, c);
     const std::size_t feasible = count_rejections(checks)[0];
@@ -140,7 +226,7 @@ SamplerKind run_auto(const LevelCloud& l, const GraspConfig& cfg, const Frames& 
     pool.add(std::move(c), std::move(checks));
   }
   timer.start("sample");
-  auto c = sample(best, l, cfg, f, seed, n - std::min(n, 3 * pilot), pilot);
+  auto c = sample(best, in, cfg, f, seed, n - std::min(n, 3 * pilot), pilot);
   timer.start("check");
   auto checks = check_candidates(bvh, g, c);
   pool.add(std::move(c), std::move(checks));
@@ -155,6 +241,8 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
                 " points; grasp detection needs at least 3");
   if (!object.has_normals()) throw Error("object cloud has no normals; grasp scoring needs them");
   check_consistent(object, "object cloud");
+  for (std::size_t i = 0; i < object.size(); ++i)
+    if (!is_finite(object.points[i])) throw Error("object point " + std::to_string(i) + " is not finite");
   const Gripper g = make_gripper(cfg.gripper);
   check_sampler(cfg.sampler);
   check_weights(cfg.score.weights);
@@ -167,20 +255,24 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   const LevelCloud l = to_level(object, out.frames);
   out.max_inliers = max_inliers(cfg.score, g, l, leaf);
   timer.start("sample");  // first, so the stages print in pipeline order
+  timer.start("shape");
+  const Model model = object_model(l, object, g, cfg, around, out);
   timer.start("check");   // the hierarchy (and the occlusion map beside it) is part of the check's cost
   Shadow shadow;
-  const PointBvh bvh = build_inputs(l, object, g, cfg.occlusion, shadow);
+  const PointBvh bvh = build_inputs(model.cloud, object, model.gripper, cfg.occlusion, shadow);
   Pool pool;
   out.sampler = cfg.sampler.kind;
+  const SampleInputs inputs{l, model.cloud, out.shape, model.gripper};
   if (cfg.sampler.kind == SamplerKind::automatic) {
-    out.sampler = run_auto(l, cfg, out.frames, g, bvh, seed, timer, pool);
+    out.sampler = run_auto(inputs, cfg, out.frames, model.gripper, bvh, seed, timer, pool);
   } else {
     timer.start("sample");
-    auto c = sample(cfg.sampler.kind, l, cfg, out.frames, seed, cfg.sampler.samples, 0);
+    auto c = sample(cfg.sampler.kind, inputs, cfg, out.frames, seed, cfg.sampler.samples, 0);
     timer.start("check");
-    auto checks = check_candidates(bvh, g, c);
+    auto checks = check_candidates(bvh, model.gripper, c);
     pool.add(std::move(c), std::move(checks));
   }
+  if (!out.shape.empty()) reject_inside(out.shape, model.gripper, pool);
   if (cfg.occlusion.enabled) {
     timer.start("occlusion");
     reject_occluded(shadow, out.frames, cfg.occlusion, pool);
@@ -190,17 +282,52 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
     reject_unreachable(object, around, g, out.frames, cfg.reach, pool);
   }
   timer.start("score");
-  out.grasps = score_and_rank(l.points, l.normals, pool.candidates, pool.checks, out.frames,
-                              cfg.score, out.max_inliers);
+  if (cfg.score.mode == ScoreMode::thesis) {
+    out.grasps = score_and_rank(model.cloud.points, model.cloud.normals, pool.candidates, pool.checks,
+                                out.frames, cfg.score, out.max_inliers);
+  } else {
+    const std::optional<Eigen::Vector4f> floor = around ? level_plane(*around, out.frames) : std::nullopt;
+    const ModelView view{bvh, model.cloud.points, model.cloud.normals, l.points.size(), out.shape, model.gripper,
+                         floor, 0.0005f + 2.0f * out.shape.noise, std::max(0.003f, 2.0f * out.shape.voxel)};
+    out.grasps = score_robust(view, model.cloud, pool, out, cfg.score, seed, timer);
+  }
   timer.stop();
   out.candidates = pool.candidates.size();
   out.rejections = count_rejections(pool.checks);
   return out;
 }
 
+namespace {
+// The whole object the criterion picks among the processed cloud's connected objects;
+// `selected` becomes its largest segment.
+Cloud whole_object(const segment::Scene& scene, const segment::ObjectConfig& cfg, std::size_t& selected) {
+  const Cloud& c = scene.pre.cloud;
+  cloud::Neighbours own;
+  const cloud::Neighbours* nb = &scene.pre.neighbours;
+  if (nb->count.size() != c.size()) {  // radius-mode normals keep no lists: search them here
+    const cloud::KdTree tree(c.points);
+    own = cloud::knn_all(tree, c.points, 16);
+    nb = &own;
+  }
+  const float gap = cfg.gap > 0.0f ? cfg.gap : segment::connection_gap(*nb);
+  const segment::Objects objects = segment::connected_objects(c, *nb, gap, 10);
+  const std::size_t k = segment::select_whole_object(c, objects, scene.segmentation, cfg);
+  std::vector<std::uint32_t> points;
+  for (const std::size_t part : segment::gather_parts(c, objects, k, cfg, cfg.part_reach))
+    points.insert(points.end(), objects.points[part].begin(), objects.points[part].end());
+  std::sort(points.begin(), points.end());
+  std::vector<std::size_t> votes(scene.segmentation.segments.size(), 0);
+  for (const auto i : objects.points[k])
+    if (scene.segmentation.label[i] >= 0) ++votes[std::size_t(scene.segmentation.label[i])];
+  selected = std::size_t(std::max_element(votes.begin(), votes.end()) - votes.begin());
+  return select(c, points);
+}
+}  // namespace
+
 Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cfg,
                     std::size_t& selected) {
   if (scene.info.empty()) throw Error("segmentation found no segment to grasp");
+  if (cfg.whole) return whole_object(scene, cfg, selected);
   selected = segment::select_object(scene.info, cfg);
   std::vector<std::uint32_t> points;
   for (const std::size_t s : segment::object_segments(scene.info, selected, cfg)) {
@@ -211,8 +338,19 @@ Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cf
   return select(scene.pre.cloud, points);
 }
 
-Surroundings surroundings(const segment::Scene& scene) {
-  return {scene.pre.cloud.points, scene.pre.plane.found, scene.pre.plane.coefficients};
+Surroundings surroundings(const segment::Scene& scene, std::vector<Eigen::Vector3f>& points,
+                          const Cloud* input) {
+  points = scene.pre.cloud.points;
+  const auto& out_of = scene.pre.output_of_input;
+  if (input != nullptr && out_of.size() == input->size()) {
+    float far = 0.0f;  // as far as the processed cloud reaches (the range crop stays cropped)
+    for (const auto& p : scene.pre.cloud.points) far = std::max(far, p.squaredNorm());
+    for (std::size_t i = 0; i < input->size(); ++i)
+      if (out_of[i] < 0 && !scene.pre.plane_of_input[i] && is_finite(input->points[i]) &&
+          input->points[i].squaredNorm() <= far)
+        points.push_back(input->points[i]);
+  }
+  return {points, scene.pre.plane.found, scene.pre.plane.coefficients};
 }
 
 Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
@@ -224,7 +362,7 @@ Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   d.object = object_points(d.scene, seg.object, d.segment);
   d.timer.stop();
   const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;
-  const Surroundings around = surroundings(d.scene);
+  const Surroundings around = surroundings(d.scene, d.obstacles, &input);
   d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);
   return d;
 }

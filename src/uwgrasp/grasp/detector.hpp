@@ -13,6 +13,7 @@
 #include "uwgrasp/grasp/reach.hpp"
 #include "uwgrasp/grasp/samplers.hpp"
 #include "uwgrasp/grasp/score.hpp"
+#include "uwgrasp/grasp/shape.hpp"
 #include "uwgrasp/segment/pipeline.hpp"
 
 namespace uwgrasp::grasp {
@@ -22,6 +23,7 @@ struct GraspConfig {
   FrameConfig frames;
   SamplerConfig sampler;
   OcclusionConfig occlusion;
+  ShapeConfig shape;
   ReachConfig reach;
   ScoreConfig score;
 };
@@ -33,6 +35,7 @@ struct ObjectGrasps {
   std::size_t candidates = 0;
   RejectCounts rejections{};                   // rejections[none] = feasible candidates
   double max_inliers = 0;                      // q_i's denominator in effect
+  ObjectShape shape;                           // the object's whole shape (empty when off)
   std::vector<Grasp> grasps;                   // ranked, at most score.top
   std::size_t feasible() const { return rejections[0]; }
 };
@@ -49,6 +52,7 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
 
 struct Detection {
   segment::Scene scene;
+  std::vector<Eigen::Vector3f> obstacles;  // the processed scene and the points outliers removed
   std::size_t segment = 0;  // the selected object's segment
   Cloud object;             // its points, camera frame
   ObjectGrasps result;
@@ -62,8 +66,11 @@ Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cf
                     std::size_t& selected);
 
 // The whole processed scene and the plane its preprocessing removed: what the whole-vehicle
-// check treats as obstacles. Refers to `scene`, which must outlive it.
-Surroundings surroundings(const segment::Scene& scene);
+// check treats as obstacles. Refers to `scene` and `points`, which must outlive it. With the
+// input cloud, `points` also gets the points outlier removal dropped (a grazing face's sparse
+// points are real surfaces: a finger must not sit in them); without it, only the processed cloud.
+Surroundings surroundings(const segment::Scene& scene, std::vector<Eigen::Vector3f>& points,
+                          const Cloud* input = nullptr);
 
 Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
                  const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed);

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -205,6 +206,25 @@ struct Walker {
     }
   }
 
+  // Every point in the closing region, as indices into the cloud.
+  void collect(std::uint32_t level, std::uint32_t j, std::vector<std::uint32_t>& out) const {
+    const BvhNode& n = bvh.levels[level][j];
+    Box4 local;
+    const M4 m = children(n, g.closing, f.closing, local);
+    for (int t = lanes::bits(m); t != 0; t &= t - 1) {
+      const std::uint32_t child = 4 * j + static_cast<std::uint32_t>(std::countr_zero(unsigned(t)));
+      if (level > 0) {
+        collect(level - 1, child, out);
+        continue;
+      }
+      for (std::uint32_t k = child * kLeafPoints; k < (child + 1) * kLeafPoints; k += 4) {
+        const V3 p = leaf_points(k);
+        for (int u = lanes::bits(lanes::contains(p, g.closing)); u != 0; u &= u - 1)
+          out.push_back(bvh.index[k + std::uint32_t(std::countr_zero(unsigned(u)))]);
+      }
+    }
+  }
+
   void leaf_closing(std::uint32_t leaf, Closing& acc) const {
     for (std::uint32_t k = leaf * kLeafPoints; k < (leaf + 1) * kLeafPoints; k += 4) {
       const V3 p = leaf_points(k);
@@ -268,6 +288,18 @@ std::vector<std::uint32_t> closing_points(std::span<const Eigen::Vector3f> point
   for (std::size_t k = 0; k < points.size(); ++k)
     if (g.closing.contains(to_gripper.point(points[k]))) out.push_back(static_cast<std::uint32_t>(k));
   return out;
+}
+
+void closing_indices(const PointBvh& bvh, const Gripper& g, const Candidate& c,
+                     std::vector<std::uint32_t>& out) {
+  out.clear();
+  if (bvh.empty()) return;
+  const GripperLanes gl(g);
+  const lanes::Frame4 to_gripper(c.rotation.transpose(), c.position);
+  const LocalFrame f = local_frame(g, c, to_gripper);
+  const Walker w{bvh, gl, f};
+  w.collect(bvh.top(), 0, out);
+  std::sort(out.begin(), out.end());
 }
 
 RejectCounts count_rejections(std::span<const Check> checks) {

@@ -62,6 +62,11 @@ Check check_brute(std::span<const Eigen::Vector3f> points, const Gripper& g, con
 std::vector<std::uint32_t> closing_points(std::span<const Eigen::Vector3f> points,
                                           const Gripper& g, const Candidate& c);
 
+// The same through the hierarchy: the cloud indices of the points in the candidate's closing
+// region, ascending, in `out`.
+void closing_indices(const PointBvh& bvh, const Gripper& g, const Candidate& c,
+                     std::vector<std::uint32_t>& out);
+
 // Counts per reason; counts[none] is the number of feasible candidates.
 RejectCounts count_rejections(std::span<const Check> checks);
 

@@ -57,6 +57,14 @@ Gripper make_gripper(const GripperConfig& c) {
   return g;
 }
 
+Gripper grow_solids(const Gripper& g, float margin) {
+  Gripper out = g;
+  for (Box& b : out.solids) b.lo.array() -= margin, b.hi.array() += margin;
+  out.bounds = out.closing;
+  for (const Box& b : out.solids) out.bounds.lo = out.bounds.lo.cwiseMin(b.lo), out.bounds.hi = out.bounds.hi.cwiseMax(b.hi);
+  return out;
+}
+
 const char* part_name(Part p) {
   static const char* names[kParts] = {"left_finger", "right_finger", "palm", "body"};
   return names[static_cast<int>(p)];

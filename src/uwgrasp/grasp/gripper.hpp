@@ -55,6 +55,10 @@ struct Gripper {
 // aperture, a minimum above the maximum, or a clearance that leaves no graspable width.
 Gripper make_gripper(const GripperConfig& cfg);
 
+// The gripper with every solid part grown by `margin` on each side (the closing region kept):
+// what the collision check uses when the surface it checks against is uncertain by that much.
+Gripper grow_solids(const Gripper& g, float margin);
+
 // Largest width the gripper accepts at closure: max_aperture - 2 * clearance.
 float max_grasp_width(const Gripper& g);
 

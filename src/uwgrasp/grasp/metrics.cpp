@@ -1,5 +1,6 @@
 #include "uwgrasp/grasp/metrics.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -90,6 +91,20 @@ void check_weights(const Weights& w) {
       throw Error("grasp.score.weights must be finite and >= 0, got " + std::to_string(v));
   if (w.normal + w.orientation + w.contact + w.inliers + w.vehicle <= 0.0)
     throw Error("grasp.score.weights sum to 0: no grasp could be ranked");
+}
+
+double force_closure_mu(const Eigen::Vector3d& c_left, const Eigen::Vector3d& n_left,
+                        const Eigen::Vector3d& c_right, const Eigen::Vector3d& n_right,
+                        const Eigen::Vector3d& closing) {
+  Eigen::Vector3d line = c_right - c_left;
+  line = line.norm() > 1e-6 ? line.normalized() : closing.normalized();
+  // Each finger pushes along the line into the object, against the outward normal there.
+  const auto angle = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::atan2(a.cross(b).norm(), a.dot(b));
+  };
+  const double worst = std::max(angle(line, -n_left.normalized()), angle(-line, -n_right.normalized()));
+  if (!(worst < 0.5 * std::numbers::pi - 1e-12)) return std::numeric_limits<double>::infinity();
+  return std::tan(worst);
 }
 
 }  // namespace uwgrasp::grasp

@@ -49,6 +49,14 @@ struct Antipodal {
 };
 Antipodal antipodal(const ContactScores& contacts, double mu);
 
+// The smallest mu for which contacts c with outward normals n, on the left and right of a
+// closing, are in force closure (Nguyen's two-contact condition, the friction-cone form of 6.4):
+// tan of the larger angle between the contact line and either inward normal; +inf when an angle
+// reaches 90 degrees. `closing` stands in for the line when the contacts coincide.
+double force_closure_mu(const Eigen::Vector3d& c_left, const Eigen::Vector3d& n_left,
+                        const Eigen::Vector3d& c_right, const Eigen::Vector3d& n_right,
+                        const Eigen::Vector3d& closing);
+
 // q_i (eq. 6.7), clipped to 1.
 double inlier_score(std::size_t inliers, double max_inliers);
 

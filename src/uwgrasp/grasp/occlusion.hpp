@@ -16,7 +16,7 @@
 namespace uwgrasp::grasp {
 
 struct OcclusionConfig {
-  bool enabled = true;
+  bool enabled = false;  // superseded by the object's shape (shape.hpp); the thesis-era check
   float thickness = 0.03f;  // assumed depth of the object behind what the camera saw, m
   float tolerance = 0.003f; // parts may touch the surface from behind by this much, m
   float resolution = 0.003f;  // bin size of the depth map in normalised image units (~rad)

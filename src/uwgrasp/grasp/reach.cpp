@@ -132,18 +132,22 @@ std::vector<Solid> vehicle_solids(const Gripper& g, const Frames& f, const Reach
   return out;
 }
 
+std::optional<Eigen::Vector4f> level_plane(const Surroundings& s, const Frames& f) {
+  if (!s.has_plane) return std::nullopt;
+  // n.p + d = 0 in C becomes n_L.p_L + d_L = 0 with n_L = R_LC n, d_L = d - n_L.t_LC.
+  const Eigen::Vector3d n = f.level_from_camera.linear() * s.plane.head<3>().cast<double>();
+  double d = s.plane[3] - n.dot(f.level_from_camera.translation());
+  Eigen::Vector3d nn = n;
+  if (nn.dot(f.level_from_camera.translation()) + d < 0.0) nn = -nn, d = -d;  // camera side +
+  Eigen::Vector4f plane;
+  plane << nn.cast<float>(), static_cast<float>(d);
+  return plane;
+}
+
 Obstacles make_obstacles(const Surroundings& s, const Frames& f) {
   Obstacles o;
   if (!s.points.empty()) o.bvh = build_bvh(points_to_level(s.points, f));
-  if (s.has_plane) {
-    // n.p + d = 0 in C becomes n_L.p_L + d_L = 0 with n_L = R_LC n, d_L = d - n_L.t_LC.
-    const Eigen::Vector3d n = f.level_from_camera.linear() * s.plane.head<3>().cast<double>();
-    double d = s.plane[3] - n.dot(f.level_from_camera.translation());
-    Eigen::Vector3d nn = n;
-    if (nn.dot(f.level_from_camera.translation()) + d < 0.0) nn = -nn, d = -d;  // camera side +
-    o.has_plane = true;
-    o.plane << nn.cast<float>(), static_cast<float>(d);
-  }
+  if (const auto plane = level_plane(s, f)) o.has_plane = true, o.plane = *plane;
   return o;
 }
 

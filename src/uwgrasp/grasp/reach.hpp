@@ -5,6 +5,7 @@
 // against everything the camera saw - the seafloor plane the preprocessing removed and every
 // remaining point, object included - not only the object.
 #include <Eigen/Core>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -22,7 +23,7 @@ struct ReachConfig {
   Eigen::Vector3d hull_centre = Eigen::Vector3d::Zero();
   double standoff = 0.3;        // the approach starts this far back along the approach axis, m
   double margin = 0.02;         // grown on every side of the hull for positioning error, m
-  double floor_tolerance = 0.01;  // parts may reach this far past the fitted seafloor plane, m
+  double floor_tolerance = 0.0;   // parts may reach this far past the fitted seafloor plane, m
 };
 
 // The rest of the scene, in the camera frame.
@@ -53,6 +54,8 @@ struct Obstacles {
   Eigen::Vector4f plane = Eigen::Vector4f::Zero();
 };
 Obstacles make_obstacles(const Surroundings& s, const Frames& f);
+// The surroundings' plane in L with the camera on its positive side, if there is one.
+std::optional<Eigen::Vector4f> level_plane(const Surroundings& s, const Frames& f);
 
 // Reject::none, or why the vehicle cannot take this grasp: hull_collision (hull at the grasp
 // pose), scene_collision (a gripper part at the grasp pose hits a point that is not the object's,

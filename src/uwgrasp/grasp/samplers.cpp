@@ -118,6 +118,7 @@ const char* sampler_name(SamplerKind k) {
     case SamplerKind::uniform: return "uniform";
     case SamplerKind::normal: return "normal";
     case SamplerKind::surface: return "surface";
+    case SamplerKind::antipodal: return "antipodal";
     case SamplerKind::automatic: return "auto";
   }
   return "?";

@@ -17,10 +17,10 @@ struct Candidate {
   std::int32_t source = -1;  // the object point the candidate was drawn around, -1 if none
 };
 
-enum class SamplerKind { uniform, normal, surface, automatic };
+enum class SamplerKind { uniform, normal, surface, antipodal, automatic };
 
 struct SamplerConfig {
-  SamplerKind kind = SamplerKind::normal;
+  SamplerKind kind = SamplerKind::antipodal;
   std::uint32_t samples = 3000;  // candidates per detection
   // sigma_theta: standard deviation of roll, pitch, yaw (Algorithms 1 and 2); pi/4 as in 8.5.
   Eigen::Vector3d sigma_theta = Eigen::Vector3d::Constant(std::numbers::pi / 4);
@@ -33,6 +33,8 @@ struct SamplerConfig {
   // position deviation sigma_p. automatic: `pilot` share of the budget on each sampler, the rest
   // on the one with the most feasible candidates.
   double pilot = 0.1;
+  // antipodal: deviation of the closing axis from the drawn point's inward normal, rad
+  double sigma_tilt = 0.1;
 };
 
 // Algorithm 1: k = ceil(count / n) points drawn uniformly (with replacement) from `points`, n
@@ -54,6 +56,25 @@ std::vector<Candidate> sample_surface(std::span<const Eigen::Vector3f> points,
                                       std::span<const Eigen::Vector3f> normals,
                                       const SamplerConfig& cfg, std::uint64_t seed,
                                       std::uint32_t count, std::uint32_t first = 0);
+
+struct ObjectShape;  // shape.hpp
+
+// Antipodal on the object's model (the pairs Dex-Net and GPD sample, with the far side from the
+// model of the unseen part): a uniformly drawn visible point, the closing axis into the object
+// along its inward normal (tilted by N(0, sigma_tilt)), the far contact where that axis leaves the
+// model, the grasp centred between the two; the approach is the gripper's approach at a vehicle
+// attitude drawn as in Algorithms 1-2, turned perpendicular to the closing axis, or a turn of 60
+// degrees either way about the closing axis when that one's palm (its face `palm_offset` behind
+// the centre, palm_half_width x palm_half_height) does not clear the model within half a
+// finger's back-off; the gripper backs off along it until the palm clears. Draws whose axis stays inside the model
+// beyond the usable aperture are drawn again (up to 8 times).
+std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
+                                        std::span<const Eigen::Vector3f> normals,
+                                        const ObjectShape& shape, const SamplerConfig& cfg,
+                                        const Eigen::Matrix3d& body_from_gripper, float max_width,
+                                        float palm_offset, float palm_half_width,
+                                        float palm_half_height, std::uint64_t seed,
+                                        std::uint32_t count, std::uint32_t first = 0);
 
 // Throws Error naming the field for a negative deviation, zero variations or a pilot share
 // outside (0, 1/3].

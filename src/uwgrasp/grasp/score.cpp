@@ -3,13 +3,22 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace uwgrasp::grasp {
+
+double robust_total(const Grasp& g) {
+  // The attitude: q_o (roll, pitch and yaw from the capture attitude: a vehicle that must turn
+  // round to come from the unseen side pays for it), averaged with q_v when a model prices it.
+  const double attitude = std::isfinite(g.hold_cost) ? 0.5 * (g.scores.orientation + g.scores.vehicle)
+                                                     : g.scores.orientation;
+  return g.robustness + 0.2 * g.force_closure + 0.1 * attitude;
+}
 
 Grasp score_candidate(std::span<const Eigen::Vector3f> points,
                       std::span<const Eigen::Vector3f> normals, const Candidate& c,
                       const Check& check, const Frames& frames, const ScoreConfig& cfg,
-                      double max_inliers) {
+                      double max_inliers, const ContactPrediction* predicted) {
   Grasp g;
   g.level_from_gripper = Pose::Identity();
   g.level_from_gripper.linear() = c.rotation.cast<double>();
@@ -38,13 +47,22 @@ Grasp score_candidate(std::span<const Eigen::Vector3f> points,
     g.scores.vehicle = std::clamp(1.0 - g.hold_cost, 0.0, 1.0);
   }
   g.scores.total = total_score(g.scores, cfg.weights);
+  if (predicted != nullptr) {
+    // What the model says: both contacts, the width from both sides, the friction estimate.
+    g.width = predicted->width;
+    for (int s = 0; s < 2; ++s) g.contacts[s] = predicted->contact[s].cast<double>(), g.contact_seen[s] = predicted->seen[s];
+    g.friction = {predicted->valid && predicted->mu <= cfg.mu, double(predicted->mu)};
+    g.force_closure = predicted->valid ? std::clamp(1.0 - predicted->mu / cfg.robust.mu, 0.0, 1.0) : 0.0;
+    g.scores.total = robust_total(g);
+  }
   return g;
 }
 
-std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
-                                  std::span<const Eigen::Vector3f> normals,
-                                  std::span<const Candidate> candidates, std::vector<Check>& checks,
-                                  const Frames& frames, const ScoreConfig& cfg, double max_inliers) {
+std::vector<Grasp> score_all(std::span<const Eigen::Vector3f> points,
+                             std::span<const Eigen::Vector3f> normals,
+                             std::span<const Candidate> candidates, std::vector<Check>& checks,
+                             const Frames& frames, const ScoreConfig& cfg, double max_inliers,
+                             std::span<const ContactPrediction> predicted) {
   std::vector<std::uint32_t> feasible;
   for (std::size_t i = 0; i < checks.size(); ++i) {
     if (checks[i].feasible() && checks[i].inliers < cfg.min_inliers) checks[i].reason = Reject::too_few_inliers;
@@ -53,7 +71,8 @@ std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
   std::vector<Grasp> all(feasible.size());
   tbb::parallel_for(std::size_t(0), feasible.size(), [&](std::size_t k) {
     const std::uint32_t i = feasible[k];
-    all[k] = score_candidate(points, normals, candidates[i], checks[i], frames, cfg, max_inliers);
+    all[k] = score_candidate(points, normals, candidates[i], checks[i], frames, cfg, max_inliers,
+                             predicted.empty() ? nullptr : &predicted[i]);
     all[k].candidate = i;
   });
   std::erase_if(all, [&](const Grasp& g) {
@@ -62,13 +81,25 @@ std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
     else return false;
     return true;
   });
+  return all;
+}
+
+void rank(std::vector<Grasp>& all, std::size_t top) {
   const auto better = [](const Grasp& a, const Grasp& b) {
     if (a.scores.total != b.scores.total) return a.scores.total > b.scores.total;
     return a.candidate < b.candidate;
   };
-  const std::size_t keep = std::min<std::size_t>(cfg.top, all.size());
+  const std::size_t keep = std::min(top, all.size());
   std::partial_sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(keep), all.end(), better);
   all.resize(keep);
+}
+
+std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
+                                  std::span<const Eigen::Vector3f> normals,
+                                  std::span<const Candidate> candidates, std::vector<Check>& checks,
+                                  const Frames& frames, const ScoreConfig& cfg, double max_inliers) {
+  std::vector<Grasp> all = score_all(points, normals, candidates, checks, frames, cfg, max_inliers);
+  rank(all, cfg.top);
   return all;
 }
 

@@ -11,6 +11,7 @@
 #include "uwgrasp/grasp/feasibility.hpp"
 #include "uwgrasp/grasp/frames.hpp"
 #include "uwgrasp/grasp/metrics.hpp"
+#include "uwgrasp/grasp/robust.hpp"
 
 namespace uwgrasp::grasp {
 
@@ -23,7 +24,18 @@ enum class InlierMode { fixed, volume, surface };
 // Passed in by the caller, so the grasp engine needs no vehicle model; it must be thread-safe.
 using HoldCostFn = std::function<double(const Eigen::Vector3d& rpy)>;
 
+// How the total ranks grasps. thesis: q_tot of eq. 6.8 (plus w_v q_v), from the one-sided cloud
+// the camera saw. robust (default): what the judge would find, predicted on the object's model
+// (shape.hpp, contacts.hpp, robust.hpp): total = robustness + 0.2 q_fc + 0.1 q_a, where q_fc =
+// 1 - mu_predicted / robust.mu (0 past it), robustness is the share of perturbed poses that hold
+// on the model (measured for the robust.candidates best by q_fc, 0 for the others), and q_a is
+// q_o, averaged with q_v when a vehicle model prices the hold. The thesis's scores are still
+// computed and reported.
+enum class ScoreMode { thesis, robust };
+
 struct ScoreConfig {
+  ScoreMode mode = ScoreMode::robust;
+  RobustConfig robust;
   Weights weights;
   OrientationConfig orientation;
   InlierMode inlier_mode = InlierMode::fixed;
@@ -51,24 +63,41 @@ struct Grasp {
   double width = 0.0;              // at closure, along the closing direction
   std::uint32_t contact_index[2] = {0, 0};  // object points: left, right
   Eigen::Vector3d contacts[2];     // in L
+  bool contact_seen[2] = {true, true};  // on the camera's points (robust mode: else the model's)
   Antipodal friction;
   double hold_cost = std::numeric_limits<double>::quiet_NaN();  // utilisation; NaN: not computed
+  // robust mode: the predicted force-closure score q_fc and the robustness on the model
+  double force_closure = 0.0, robustness = 0.0;
 };
 
-// Scores every feasible candidate (points and normals in L, indices as in the checks). A
-// candidate with fewer than cfg.min_inliers points has its check's reason set to
-// too_few_inliers, one that fails the antipodal requirement to not_antipodal, and one whose
-// attitude the vehicle cannot hold to cannot_hold.
-// Returns the grasps ranked by total score, ties by candidate index, at most cfg.top.
+// Scores every feasible candidate (points and normals in L, indices as in the checks), in
+// candidate order. A candidate with fewer than cfg.min_inliers points has its check's reason set
+// to too_few_inliers, one that fails the antipodal requirement to not_antipodal, and one whose
+// attitude the vehicle cannot hold to cannot_hold. `predicted` (robust mode, one per candidate,
+// empty otherwise) gives the contacts, width and friction estimate from the object's model.
+std::vector<Grasp> score_all(std::span<const Eigen::Vector3f> points,
+                             std::span<const Eigen::Vector3f> normals,
+                             std::span<const Candidate> candidates, std::vector<Check>& checks,
+                             const Frames& frames, const ScoreConfig& cfg, double max_inliers,
+                             std::span<const ContactPrediction> predicted = {});
+
+// The grasps ranked by total score, ties by candidate index, at most `top`.
+void rank(std::vector<Grasp>& grasps, std::size_t top);
+
+// score_all then rank to cfg.top (the thesis mode's whole scoring stage).
 std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
                                   std::span<const Eigen::Vector3f> normals,
                                   std::span<const Candidate> candidates, std::vector<Check>& checks,
                                   const Frames& frames, const ScoreConfig& cfg, double max_inliers);
 
-// Scores one feasible candidate.
+// Scores one feasible candidate; with a prediction (robust mode) its contacts, width and
+// friction estimate come from it.
 Grasp score_candidate(std::span<const Eigen::Vector3f> points,
                       std::span<const Eigen::Vector3f> normals, const Candidate& c,
                       const Check& check, const Frames& frames, const ScoreConfig& cfg,
-                      double max_inliers);
+                      double max_inliers, const ContactPrediction* predicted = nullptr);
+
+// The robust mode's total from a grasp's scores, q_fc and robustness (see ScoreMode).
+double robust_total(const Grasp& g);
 
 }  // namespace uwgrasp::grasp

@@ -41,16 +41,38 @@ void visit_sampler(Visitor& v, grasp::SamplerConfig& s) {
   using K = grasp::SamplerKind;
   enum_choice<K>(v, "kind", s.kind,
                  {{"normal", K::normal}, {"uniform", K::uniform}, {"surface", K::surface},
-                  {"auto", K::automatic}});
+                  {"antipodal", K::antipodal}, {"auto", K::automatic}});
   v.field("samples", s.samples, 1, 1e8);
   v.field("sigma_theta", s.sigma_theta, 0.0, 2 * kPi);
   v.field("variations", s.variations, 1, 1e6);
   v.field("sigma_p", s.sigma_p, 0.0, 10.0);
   v.field("alpha_p", s.alpha_p, 0.0, 100.0);
   v.field("pilot", s.pilot, 0.01, 1.0 / 3.0);
+  v.field("sigma_tilt", s.sigma_tilt, 0.0, kPi);
+}
+
+void visit_shape(Visitor& v, grasp::ShapeConfig& s) {
+  v.field("enabled", s.enabled);
+  v.field("voxel", s.voxel, 1e-4, 1.0);
+  v.field("max_voxels", s.max_voxels, 1000, 1e9);
+  v.field("min_thickness", s.min_thickness, 0.0, 1.0);
+  v.field("shadow_tolerance", s.shadow_tolerance, 0.0, 1.0);
+  v.field("floor_clearance", s.floor_clearance, 0.0, 1.0);
+  v.field("resolution", s.resolution, 1e-4, 0.1);
+  v.field("margin_sigmas", s.margin_sigmas, 0.0, 100.0);
+  v.field("min_margin", s.min_margin, 0.0, 0.1);
 }
 
 void visit_score(Visitor& v, grasp::ScoreConfig& s) {
+  using SM = grasp::ScoreMode;
+  enum_choice<SM>(v, "mode", s.mode, {{"robust", SM::robust}, {"thesis", SM::thesis}});
+  v.section("robust", [&] {
+    v.field("mu", s.robust.mu, 1e-3, 100.0);
+    v.field("samples", s.robust.samples, 0, 1e5);
+    v.field("candidates", s.robust.candidates, 0, 1e6);
+    v.field("sigma_position", s.robust.sigma_position, 0.0, 1.0);
+    v.field("sigma_angle", s.robust.sigma_angle, 0.0, kPi);
+  });
   v.section("weights", [&] {
     v.field("normal", s.weights.normal, 0.0, 1e6);
     v.field("orientation", s.weights.orientation, 0.0, 1e6);
@@ -84,6 +106,7 @@ void visit_grasp(Visitor& v, grasp::GraspConfig& c) {
   v.section("gripper", [&] { visit_gripper(v, c.gripper); });
   v.section("frames", [&] { visit_frames(v, c.frames); });
   v.section("sampler", [&] { visit_sampler(v, c.sampler); });
+  v.section("shape", [&] { visit_shape(v, c.shape); });
   v.section("occlusion", [&] {
     v.field("enabled", c.occlusion.enabled);
     v.field("thickness", c.occlusion.thickness, 0.0, 10.0);

@@ -73,6 +73,9 @@ void visit_segment(Visitor& v, segment::SegmentConfig& c) {
     v.field("min_intensity", c.object.min_intensity, 0.0, 1.0);
     v.field("point", c.object.point, -1e4, 1e4);
     v.field("merge_radius", c.object.merge_radius, 0.0, 100.0);
+    v.field("whole", c.object.whole);
+    v.field("gap", c.object.gap, 0.0, 1.0);
+    v.field("part_reach", c.object.part_reach, 0.0, 10.0);
   });
 }
 }  // namespace

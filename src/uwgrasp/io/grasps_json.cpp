@@ -42,12 +42,15 @@ json grasp_json(const grasp::Grasp& g, const grasp::Frames& f, std::size_t rank)
   j["inliers"] = g.inliers;
   j["width"] = g.width;
   j["contacts"] = {vec(T_CL * g.contacts[0]), vec(T_CL * g.contacts[1])};
+  j["contact_seen"] = {g.contact_seen[0], g.contact_seen[1]};
   j["vehicle_pose"] = pose_json(g.level_from_vehicle);
   j["vehicle_pose"]["frame"] = "level";
   j["hold_cost"] = number_or_null(g.hold_cost);
   j["level"] = pose_json(g.level_from_gripper);
   j["antipodal"] = g.friction.ok;
   j["mu_required"] = number_or_null(g.friction.mu_required);
+  j["robustness"] = g.robustness;        // robust mode: share of perturbed poses that hold on the model
+  j["force_closure"] = g.force_closure;  // robust mode: q_fc
   j["candidate"] = g.candidate;
   return j;
 }

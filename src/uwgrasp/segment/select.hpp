@@ -24,6 +24,11 @@ struct ObjectConfig {
   // centroid lies within this distance of the selected one's, m. Objects of flat faces (boxes,
   // bars) split into a segment per face under region growing; this gathers them again.
   float merge_radius = 0.0f;
+  // true: the object is the whole connected object the criterion picks (objects.hpp); false:
+  // the thesis's single segment (plus merge_radius).
+  bool whole = true;
+  float gap = 0.0f;  // m joining the object's points; 0: three times the cloud's point spacing
+  float part_reach = 0.05f;  // m: objects of the same colour this close join as parts of one
 };
 
 struct SegmentInfo {

@@ -1,0 +1,70 @@
+#include "uwgrasp/grasp/robust.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+
+#include "uwgrasp/core/rng.hpp"
+
+namespace uwgrasp::grasp {
+
+namespace {
+// A solid part below the seafloor (any corner past the plane) or wholly inside the model.
+bool blocked(const ModelView& m, const Candidate& c) {
+  for (const Box& b : m.gripper.solids) {
+    if (m.shape.occupied(c.rotation * b.centre() + c.position)) return true;
+    if (!m.floor) continue;
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector3f q((k & 1) ? b.hi.x() : b.lo.x(), (k & 2) ? b.hi.y() : b.lo.y(),
+                              (k & 4) ? b.hi.z() : b.lo.z());
+      if (m.floor->head<3>().dot(c.rotation * q + c.position) + (*m.floor)[3] < 0.0f) return true;
+    }
+  }
+  return false;
+}
+}  // namespace
+
+ContactPrediction predict(const ModelView& m, const Candidate& c) {
+  std::vector<std::uint32_t> idx;
+  closing_indices(m.bvh, m.gripper, c, idx);
+  return predict_contacts(m.points, m.normals, idx, c, m.band, m.radius, m.measured);
+}
+
+bool holds_on_model(const ModelView& m, const Candidate& c, double mu) {
+  const std::vector<Check> check = check_candidates(m.bvh, m.gripper, std::span(&c, 1));
+  if (!check[0].feasible() || blocked(m, c)) return false;
+  const ContactPrediction p = predict(m, c);
+  return p.valid && p.mu <= mu;
+}
+
+Candidate perturb(const Candidate& c, const RobustConfig& cfg, std::uint64_t seed,
+                  std::uint32_t candidate, std::uint32_t k) {
+  Rng rng(seed ^ 0x3C6EF372FE94F82BULL, (std::uint64_t(candidate) << 20) ^ k);
+  Eigen::Vector3d d, w;
+  for (int i = 0; i < 3; ++i) d[i] = rng.normal(0.0, cfg.sigma_position);
+  for (int i = 0; i < 3; ++i) w[i] = rng.normal(0.0, cfg.sigma_angle);
+  Candidate out = c;
+  out.position += d.cast<float>();
+  if (w.norm() > 0.0)
+    out.rotation = c.rotation * Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix().cast<float>();
+  return out;
+}
+
+std::vector<float> robustness(const ModelView& m, std::span<const Candidate> candidates,
+                              std::span<const std::uint32_t> which, const RobustConfig& cfg,
+                              std::uint64_t seed) {
+  std::vector<float> out(which.size(), 0.0f);
+  if (cfg.samples == 0) return out;
+  std::vector<char> held(which.size() * cfg.samples, 0);
+  tbb::parallel_for(std::size_t(0), held.size(), [&](std::size_t t) {
+    const std::uint32_t i = which[t / cfg.samples], k = std::uint32_t(t % cfg.samples);
+    held[t] = holds_on_model(m, perturb(candidates[i], cfg, seed, i, k), cfg.mu);
+  });
+  for (std::size_t j = 0; j < which.size(); ++j)
+    out[j] = float(std::count(held.begin() + std::ptrdiff_t(j * cfg.samples),
+                              held.begin() + std::ptrdiff_t((j + 1) * cfg.samples), 1)) / float(cfg.samples);
+  return out;
+}
+
+}  // namespace uwgrasp::grasp

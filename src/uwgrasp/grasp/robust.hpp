@@ -1,0 +1,52 @@
+#pragma once
+// Judging candidates on the object's model before the judge does it on the truth: a candidate
+// holds on the model when the check finds no collision with the model (visible points, unseen
+// surface, wholly-inside parts, the seafloor), its width fits, and the predicted contacts
+// (contacts.hpp) are in force closure at mu. Its robustness is the share of poses perturbed as
+// the judge perturbs them (Dex-Net's robust force closure) that still hold on the model.
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "uwgrasp/grasp/bvh.hpp"
+#include "uwgrasp/grasp/contacts.hpp"
+#include "uwgrasp/grasp/feasibility.hpp"
+#include "uwgrasp/grasp/shape.hpp"
+
+namespace uwgrasp::grasp {
+
+struct RobustConfig {
+  double mu = 0.3;               // friction coefficient the model's grasps must hold at
+  std::uint32_t samples = 16;    // perturbed poses per candidate
+  std::uint32_t candidates = 40; // the best-predicted candidates whose robustness is measured
+  double sigma_position = 0.005; // m per axis
+  double sigma_angle = 0.0524;   // rad per axis (3 degrees)
+};
+
+// The object's model and the gripper the check uses.
+struct ModelView {
+  const PointBvh& bvh;
+  std::span<const Eigen::Vector3f> points, normals;  // L, the BVH's cloud
+  std::size_t measured = 0;                          // its first points are the camera's
+  const ObjectShape& shape;                          // may be empty
+  const Gripper& gripper;                            // grown by the collision margin
+  std::optional<Eigen::Vector4f> floor;              // L, camera side positive
+  float band = 0.0005f, radius = 0.003f;             // contact patch band, line radius (m)
+};
+
+// The predicted contacts of a candidate the check found feasible.
+ContactPrediction predict(const ModelView& m, const Candidate& c);
+// Whether the candidate holds on the model at mu (check, inside, floor, width, force closure).
+bool holds_on_model(const ModelView& m, const Candidate& c, double mu);
+// The candidate perturbed by draw k of its own stream.
+Candidate perturb(const Candidate& c, const RobustConfig& cfg, std::uint64_t seed,
+                  std::uint32_t candidate, std::uint32_t k);
+// Robustness of each candidate in `which` (share of cfg.samples perturbed poses that hold),
+// computed in parallel; the same seed gives the same shares at any thread count.
+std::vector<float> robustness(const ModelView& m, std::span<const Candidate> candidates,
+                              std::span<const std::uint32_t> which, const RobustConfig& cfg,
+                              std::uint64_t seed);
+
+}  // namespace uwgrasp::grasp

@@ -1,0 +1,178 @@
+#include "uwgrasp/grasp/shape.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/core/cloud.hpp"
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/occlusion.hpp"
+
+namespace uwgrasp::grasp {
+
+namespace {
+using V3 = Eigen::Vector3f;
+
+struct Grid {
+  ObjectShape& s;
+  std::size_t index(int i, int j, int k) const {
+    return (std::size_t(k) * std::size_t(s.ny) + std::size_t(j)) * std::size_t(s.nx) + std::size_t(i);
+  }
+  bool inside(int i, int j, int k) const {
+    return i >= 0 && j >= 0 && k >= 0 && i < s.nx && j < s.ny && k < s.nz;
+  }
+  Eigen::Vector3i cell(const V3& p) const {
+    const V3 q = (p - s.origin) / s.voxel;
+    return {int(std::lround(q.x())), int(std::lround(q.y())), int(std::lround(q.z()))};
+  }
+  V3 centre(int i, int j, int k) const { return s.origin + s.voxel * V3(float(i), float(j), float(k)); }
+  Occupancy get(int i, int j, int k) const { return inside(i, j, k) ? s.cells[index(i, j, k)] : Occupancy::free; }
+};
+
+// The seafloor's depth (L's z) under (x, y), or nullopt where the plane is too steep to rest on.
+std::optional<float> floor_z(const std::optional<FloorPlane>& f, float x, float y) {
+  if (!f || std::abs((*f)[2]) < 0.3f) return std::nullopt;
+  return -((*f)[0] * x + (*f)[1] * y + (*f)[3]) / (*f)[2];
+}
+
+// Sizes the grid over the object, down to the seafloor below it (or its lowest point).
+void size_grid(ObjectShape& s, std::span<const V3> level, const std::optional<FloorPlane>& floor,
+               const ShapeConfig& cfg) {
+  V3 lo = V3::Constant(std::numeric_limits<float>::max()), hi = -lo;
+  for (const V3& p : level) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const float pad = cfg.min_thickness;
+  lo.head<2>() -= V3::Constant(pad).head<2>(), hi.head<2>() += V3::Constant(pad).head<2>();
+  float bottom = hi.z() + pad;
+  for (const float x : {lo.x(), hi.x()})
+    for (const float y : {lo.y(), hi.y()})
+      if (const auto z = floor_z(floor, x, y)) bottom = std::max(bottom, std::min(*z, hi.z() + 2.0f * (hi - lo).maxCoeff()));
+  hi.z() = bottom;
+  s.voxel = cfg.voxel;
+  const auto dims = [&] { return ((hi - lo) / s.voxel).array().ceil().cast<int>() + 1; };
+  while (double(dims().prod()) > double(cfg.max_voxels)) s.voxel *= 1.25f;
+  const Eigen::Array3i n = dims();
+  s.nx = n.x(), s.ny = n.y(), s.nz = n.z();
+  s.origin = lo;
+  s.cells.assign(std::size_t(n.prod()), Occupancy::free);
+}
+
+// Marks the unseen voxels under the visible surface (down to the seafloor) and within the
+// minimum thickness behind each visible point, wherever the camera's view is blocked by the
+// object.
+template <class Shadow>
+void fill_unseen(Grid g, std::span<const V3> level, std::span<const V3> camera, const Frames& frames,
+                 const std::optional<FloorPlane>& floor, const ShapeConfig& cfg, Shadow in_shadow) {
+  ObjectShape& s = g.s;
+  std::vector<int> top(std::size_t(s.nx) * std::size_t(s.ny), s.nz);
+  for (const V3& p : level) {
+    const Eigen::Vector3i c = g.cell(p);
+    if (!g.inside(c.x(), c.y(), c.z())) continue;
+    s.cells[g.index(c.x(), c.y(), c.z())] = Occupancy::seen;
+    for (int dj = -1; dj <= 1; ++dj)  // dilated by one column: gaps between points are not holes
+      for (int di = -1; di <= 1; ++di)
+        if (g.inside(c.x() + di, c.y() + dj, 0)) {
+          int& t = top[std::size_t(c.y() + dj) * std::size_t(s.nx) + std::size_t(c.x() + di)];
+          t = std::min(t, c.z());
+        }
+  }
+  for (int j = 0; j < s.ny; ++j)
+    for (int i = 0; i < s.nx; ++i) {
+      const V3 base = g.centre(i, j, 0);
+      const auto fz = floor_z(floor, base.x(), base.y());
+      const int last = fz ? std::min(s.nz - 1, int(std::floor((*fz - cfg.floor_clearance - s.origin.z()) / s.voxel)))
+                          : s.nz - 1;
+      for (int k = top[std::size_t(j) * std::size_t(s.nx) + std::size_t(i)] + 1; k <= last; ++k)
+        if (s.cells[g.index(i, j, k)] == Occupancy::free && in_shadow(g.centre(i, j, k)))
+          s.cells[g.index(i, j, k)] = Occupancy::assumed;
+    }
+  const int steps = int(std::ceil(cfg.min_thickness / s.voxel));
+  for (const V3& c : camera) {
+    const V3 u = c.normalized();
+    for (int t = 1; t <= steps; ++t) {
+      const V3 p = (frames.level_from_camera * (c + u * (float(t) * s.voxel)).cast<double>()).cast<float>();
+      const Eigen::Vector3i q = g.cell(p);
+      if (g.get(q.x(), q.y(), q.z()) == Occupancy::free && in_shadow(p))
+        s.cells[g.index(q.x(), q.y(), q.z())] = Occupancy::assumed;
+    }
+  }
+}
+
+// The assumed voxels next to a free one, with normals pointing away from the occupied mass
+// around them (the sum of the offsets of the occupied voxels in a 5 x 5 x 5 block, negated).
+void shell(Grid g) {
+  ObjectShape& s = g.s;
+  for (int k = 0; k < s.nz; ++k)
+    for (int j = 0; j < s.ny; ++j)
+      for (int i = 0; i < s.nx; ++i) {
+        if (s.cells[g.index(i, j, k)] != Occupancy::assumed) continue;
+        const bool boundary = g.get(i - 1, j, k) == Occupancy::free || g.get(i + 1, j, k) == Occupancy::free ||
+                              g.get(i, j - 1, k) == Occupancy::free || g.get(i, j + 1, k) == Occupancy::free ||
+                              g.get(i, j, k - 1) == Occupancy::free || g.get(i, j, k + 1) == Occupancy::free;
+        if (!boundary) continue;
+        V3 n = V3::Zero();
+        for (int dk = -2; dk <= 2; ++dk)
+          for (int dj = -2; dj <= 2; ++dj)
+            for (int di = -2; di <= 2; ++di)
+              if (g.get(i + di, j + dj, k + dk) != Occupancy::free) n -= V3(float(di), float(dj), float(dk));
+        if (n.norm() < 1e-3f) continue;  // no side faces away from the mass: not a surface
+        s.points.push_back(g.centre(i, j, k));
+        s.normals.push_back(n.normalized());
+      }
+}
+}  // namespace
+
+Occupancy ObjectShape::at(const Eigen::Vector3f& p) const {
+  if (cells.empty()) return Occupancy::free;
+  const Grid g{const_cast<ObjectShape&>(*this)};
+  const Eigen::Vector3i c = g.cell(p);
+  return g.get(c.x(), c.y(), c.z());
+}
+
+std::size_t ObjectShape::count(Occupancy o) const { return std::size_t(std::count(cells.begin(), cells.end(), o)); }
+
+ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
+                           std::span<const Eigen::Vector3f> camera, const Frames& frames,
+                           const std::optional<FloorPlane>& floor, const ShapeConfig& cfg) {
+  if (level.empty() || level.size() != camera.size())
+    throw Error("object shape: the object has no points (or the level and camera points differ)");
+  if (!(cfg.voxel > 0.0f) || !(cfg.resolution > 0.0f))
+    throw Error("grasp.shape.voxel and grasp.shape.resolution must be positive");
+  if (!(cfg.min_thickness >= 0.0f) || !(cfg.shadow_tolerance >= 0.0f) || !(cfg.floor_clearance >= 0.0f))
+    throw Error("grasp.shape: min_thickness, shadow_tolerance and floor_clearance must be >= 0");
+  ObjectShape s;
+  s.noise = surface_noise(camera);
+  size_grid(s, level, floor, cfg);
+  const DepthMap map = make_depth_map(camera, cfg.resolution);
+  const Pose camera_from_level = frames.level_from_camera.inverse();
+  const float tolerance = cfg.shadow_tolerance + 2.0f * s.noise;
+  const auto in_shadow = [&](const V3& p) {
+    const V3 c = (camera_from_level * p.cast<double>()).cast<float>();
+    return c.z() > 0.0f && map.at(c.x() / c.z(), c.y() / c.z()) < c.z() - tolerance;
+  };
+  fill_unseen(Grid{s}, level, camera, frames, floor, cfg, in_shadow);
+  shell(Grid{s});
+  return s;
+}
+
+float surface_noise(std::span<const Eigen::Vector3f> points, std::size_t k, std::size_t samples) {
+  if (points.size() <= k) return 0.0f;
+  const cloud::KdTree tree(points);
+  const std::size_t step = std::max<std::size_t>(1, points.size() / samples);
+  std::vector<float> rms;
+  std::vector<std::uint32_t> idx(k);
+  std::vector<float> d2(k);
+  for (std::size_t i = 0; i < points.size(); i += step) {
+    idx.resize(tree.knn(points[i], k, idx.data(), d2.data()));
+    const MeanCovariance mc = mean_covariance(points, idx);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(mc.cov, Eigen::EigenvaluesOnly);
+    rms.push_back(float(std::sqrt(std::max(0.0, es.eigenvalues()[0]))));
+    idx.resize(k);
+  }
+  std::nth_element(rms.begin(), rms.begin() + std::ptrdiff_t(rms.size() / 2), rms.end());
+  return rms[rms.size() / 2];
+}
+
+}  // namespace uwgrasp::grasp

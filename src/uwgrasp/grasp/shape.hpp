@@ -1,0 +1,72 @@
+#pragma once
+// The object's whole shape from one view (thesis 7.4.3 assumed the visible side is enough; it is
+// not: most grasps that fail put a finger into the object's unseen back). An occupancy grid in
+// the level frame L (z along gravity) holds:
+//   seen     - voxels with an object point;
+//   assumed  - voxels the camera could not see (in the object's shadow: the object's visible
+//              surface lies between them and the camera) that are either under the object's
+//              visible surface (gravity prior: what is seen rests on something below it, down to
+//              the seafloor) or within `min_thickness` behind a visible point (a face seen
+//              head-on, without a top in view, still has some depth);
+//   free     - everything else: seen through, or beside and behind the object where nothing of
+//              it is above.
+// The unseen boundary of the assumed volume becomes virtual surface points with outward
+// normals, so that the collision check, the width at closure and the contacts see both sides
+// of the object; a gripper part wholly inside the volume is found by its centre's voxel.
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "uwgrasp/grasp/frames.hpp"
+
+namespace uwgrasp::grasp {
+
+struct ShapeConfig {
+  bool enabled = true;
+  float voxel = 0.0025f;          // grid spacing, m (grown for large objects, see max_voxels)
+  std::uint32_t max_voxels = 4000000;
+  float min_thickness = 0.015f;   // m of object behind any visible point, in its shadow
+  float shadow_tolerance = 0.002f;  // m (plus the noise): nearer than this is not behind
+  float floor_clearance = 0.002f;   // m: the unseen part stops this far above the seafloor
+  float resolution = 0.003f;        // the shadow map's bin in normalised image units (~rad)
+  // The gripper's solid parts are grown by max(min_margin, margin_sigmas x the measured surface
+  // noise) for the collision check: a noisy surface may lie that much deeper than its points.
+  float margin_sigmas = 2.0f;
+  float min_margin = 0.001f;
+};
+
+enum class Occupancy : std::uint8_t { free, seen, assumed };
+
+struct ObjectShape {
+  Eigen::Vector3f origin = Eigen::Vector3f::Zero();  // centre of voxel (0, 0, 0), L
+  float voxel = 0.0f;
+  int nx = 0, ny = 0, nz = 0;
+  std::vector<Occupancy> cells;  // x fastest
+  // The unseen surface: centres of assumed voxels next to a free one, in L, with outward normals.
+  std::vector<Eigen::Vector3f> points, normals;
+  float noise = 0.0f;  // the surface's measured noise (sigma, m), see surface_noise
+
+  bool empty() const { return cells.empty(); }
+  Occupancy at(const Eigen::Vector3f& p_level) const;  // free outside the grid
+  bool occupied(const Eigen::Vector3f& p_level) const { return at(p_level) != Occupancy::free; }
+  std::size_t count(Occupancy o) const;
+};
+
+// The seafloor in L as n.p + d = 0, |n| = 1, with the camera on the positive side.
+using FloorPlane = Eigen::Vector4f;
+
+// Builds the shape of an object seen by the camera of `frames`: `level` and `camera` are the
+// same points in L and in the camera frame. Throws Error for an empty object, a non-positive
+// voxel or resolution, or negative lengths.
+ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
+                           std::span<const Eigen::Vector3f> camera, const Frames& frames,
+                           const std::optional<FloorPlane>& floor, const ShapeConfig& cfg);
+
+// The surface's noise: the median RMS distance of a point's k nearest neighbours from their
+// least-squares plane (on up to `samples` points). 0 for fewer than k points.
+float surface_noise(std::span<const Eigen::Vector3f> points, std::size_t k = 12,
+                    std::size_t samples = 1500);
+
+}  // namespace uwgrasp::grasp

@@ -1,0 +1,161 @@
+#include "uwgrasp/segment/objects.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::segment {
+
+namespace {
+std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+Eigen::Vector3f centroid_of(const Cloud& cloud, const std::vector<std::uint32_t>& idx) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto i : idx) sum += cloud.points[i].cast<double>();
+  return (sum / double(std::max<std::size_t>(idx.size(), 1))).cast<float>();
+}
+
+// Colour mode: the object whose coloured points are the most intense, among the objects with at
+// least a quarter of the most coloured one's coloured points.
+std::size_t by_colour(const Cloud& cloud, const Objects& o, const ObjectConfig& cfg) {
+  std::vector<std::size_t> coloured(o.points.size(), 0);
+  std::vector<double> intensity(o.points.size(), 0.0);
+  for (std::size_t k = 0; k < o.points.size(); ++k)
+    for (const auto i : o.points[k])
+      if (cloud.has_colors()) {
+        const float v = color_intensity(cloud.colors[i], cfg.color);
+        if (v >= cfg.min_intensity) ++coloured[k], intensity[k] += v;
+      }
+  const std::size_t most = coloured.empty() ? 0 : *std::max_element(coloured.begin(), coloured.end());
+  if (most == 0)
+    throw Error("no " + cfg.color + " object: none of " + std::to_string(o.points.size()) +
+                " objects has a point of intensity >= segment.object.min_intensity " +
+                std::to_string(cfg.min_intensity));
+  std::size_t best = o.points.size();
+  for (std::size_t k = 0; k < o.points.size(); ++k) {
+    if (4 * coloured[k] < most) continue;
+    intensity[k] /= double(coloured[k]);
+    if (best == o.points.size() || intensity[k] > intensity[best]) best = k;
+  }
+  return best;
+}
+}  // namespace
+
+Objects connected_objects(const Cloud& cloud, const cloud::Neighbours& nb, float gap,
+                          std::uint32_t min_points) {
+  const std::size_t n = cloud.size();
+  if (nb.count.size() != n) throw Error("connected objects: neighbour lists do not match the cloud");
+  std::vector<std::uint32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  const float g2 = gap * gap;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto idx = nb.of(i);
+    const auto d2 = nb.dists_of(i);
+    for (std::size_t k = 0; k < idx.size(); ++k)
+      if (d2[k] <= g2) {
+        const std::uint32_t a = find(parent, std::uint32_t(i)), b = find(parent, idx[k]);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the lowest index roots: deterministic
+      }
+  }
+  std::vector<std::uint32_t> size(n, 0);
+  for (std::size_t i = 0; i < n; ++i) ++size[find(parent, std::uint32_t(i))];
+  Objects out;
+  out.object_of_point.assign(n, -1);
+  std::vector<std::int32_t> number(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t r = find(parent, std::uint32_t(i));
+    if (size[r] < min_points) continue;
+    if (number[r] < 0) number[r] = std::int32_t(out.points.size()), out.points.emplace_back();
+    out.object_of_point[i] = number[r];
+    out.points[std::size_t(number[r])].push_back(std::uint32_t(i));
+  }
+  return out;
+}
+
+float connection_gap(const cloud::Neighbours& nb, float spacing_mul, float lo, float hi) {
+  std::vector<float> d;
+  for (std::size_t i = 0; i < nb.count.size(); i += 7)  // a sample is plenty for a median
+    for (const float d2 : nb.dists_of(i))
+      if (d2 > 0.0f) {
+        d.push_back(std::sqrt(d2));
+        break;
+      }
+  if (d.empty()) return lo;
+  std::nth_element(d.begin(), d.begin() + std::ptrdiff_t(d.size() / 2), d.end());
+  return std::clamp(spacing_mul * d[d.size() / 2], lo, hi);
+}
+
+std::size_t select_whole_object(const Cloud& cloud, const Objects& o, const Segmentation& seg,
+                                const ObjectConfig& cfg) {
+  if (o.points.empty()) throw Error("no objects: nothing to select as the object of interest");
+  const auto best = [&](auto key) {
+    std::size_t b = 0;
+    for (std::size_t k = 1; k < o.points.size(); ++k)
+      if (key(k) < key(b)) b = k;
+    return b;
+  };
+  switch (cfg.by) {
+    case ObjectBy::color: return by_colour(cloud, o, cfg);
+    case ObjectBy::largest: return best([&](std::size_t k) { return -double(o.points[k].size()); });
+    case ObjectBy::nearest:
+      return best([&](std::size_t k) { return double((centroid_of(cloud, o.points[k]) - cloud.viewpoint).norm()); });
+    case ObjectBy::label: {
+      if (cfg.label >= seg.segments.size())
+        throw Error("object label:" + std::to_string(cfg.label) + " does not exist (" +
+                    std::to_string(seg.segments.size()) + " segments)");
+      std::vector<std::size_t> votes(o.points.size(), 0);
+      for (const auto i : seg.segments[cfg.label])
+        if (o.object_of_point[i] >= 0) ++votes[std::size_t(o.object_of_point[i])];
+      return best([&](std::size_t k) { return -double(votes[k]); });
+    }
+    case ObjectBy::point: {
+      const Eigen::Vector3f p = cfg.point.cast<float>();
+      std::size_t nearest = 0;
+      float d = std::numeric_limits<float>::max();
+      for (std::size_t k = 0; k < o.points.size(); ++k)
+        for (const auto i : o.points[k])
+          if ((cloud.points[i] - p).squaredNorm() < d) d = (cloud.points[i] - p).squaredNorm(), nearest = k;
+      return nearest;
+    }
+  }
+  throw Error("unknown object selection mode");
+}
+
+std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std::size_t selected,
+                                      const ObjectConfig& cfg, float reach) {
+  std::vector<std::size_t> out{selected};
+  std::vector<char> taken(o.points.size(), 0), eligible(o.points.size(), 1);
+  taken[selected] = 1;
+  if (cfg.by == ObjectBy::color) {
+    for (std::size_t k = 0; k < o.points.size(); ++k) {
+      std::size_t coloured = 0;
+      for (const auto i : o.points[k])
+        coloured += cloud.has_colors() && color_intensity(cloud.colors[i], cfg.color) >= cfg.min_intensity;
+      eligible[k] = 2 * coloured >= o.points[k].size();
+    }
+  }
+  for (std::size_t next = 0; next < out.size(); ++next) {
+    std::vector<Eigen::Vector3f> pts;
+    for (const auto i : o.points[out[next]]) pts.push_back(cloud.points[i]);
+    const cloud::KdTree tree(pts);
+    for (std::size_t k = 0; k < o.points.size(); ++k) {
+      if (taken[k] || !eligible[k]) continue;
+      std::uint32_t idx = 0;
+      float d2 = 0;
+      for (const auto i : o.points[k])
+        if (tree.knn(cloud.points[i], 1, &idx, &d2) == 1 && d2 <= reach * reach) {
+          taken[k] = 1, out.push_back(k);
+          break;
+        }
+    }
+  }
+  return out;
+}
+
+}  // namespace uwgrasp::segment
