@@ -113,6 +113,9 @@ std::vector<JudgedCaseResult> run_judged_study(const JudgedPlan& plan) {
     JudgedCaseResult r;
     r.c = c;
     const auto t0 = std::chrono::steady_clock::now();
+    const eval::Camera camera{s.world_from_camera, sim::make_intrinsics(s.render.camera), s.render.camera.max_range};
+    r.grasp_exists =
+        eval::find_any_grasp(world, camera, grasp::make_gripper(plan.base.grasp.gripper), st.target).exists;
     for (int i = 0; i < plan.iterations; ++i) {
       std::cerr << "uwgrasp experiments [judged] " << c.scene << ", " << c.label() << ": iteration " << i + 1
                 << "/" << plan.iterations << std::endl;

@@ -15,6 +15,7 @@
 #include "experiments/experiments.hpp"
 #include "uwgrasp/eval/calibration.hpp"
 #include "uwgrasp/eval/evaluate.hpp"
+#include "uwgrasp/eval/exists.hpp"
 
 namespace uwgrasp::experiments {
 
@@ -61,6 +62,9 @@ struct JudgedCaseResult {
   std::vector<ScoredOutcome> scored;  // every feasible candidate of every iteration
   cv::Mat tile;                       // the first iteration's judged grasps on the truth
   double seconds = 0;
+  // Whether any grasp of the gripper holds the object (eval/exists.hpp): when none does, "no
+  // grasp" is the right answer and counts as a success.
+  bool grasp_exists = true;
 };
 
 std::vector<JudgedCaseResult> run_judged_study(const JudgedPlan& plan);

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/eval/exists.hpp"
 #include "uwgrasp/eval/judge.hpp"
 
 namespace {
@@ -231,4 +232,23 @@ TEST(Judge, BadInputIsAnError) {
   EXPECT_THROW(robust_share(w, camera_along_x(), kGripper, Pose::Identity(), 0, rc, 1, 0), Error);
 }
 
+}  // namespace
+
+namespace {
+TEST(Exists, AFloatingCubeHasAGraspAFlatSlabOnTheFloorNone) {
+  const sim::World cube(scene({box("cube", V3::Constant(0.04), at(V3(0, 0, 0.3)))}, true));
+  const Existence e = find_any_grasp(cube, camera_along_x(), kGripper, 0);
+  ASSERT_TRUE(e.exists);
+  EXPECT_TRUE(judge(cube, camera_along_x(), kGripper, e.example, 0).holds(0.4));
+  // 10 x 10 x 4 cm on the floor: across it is too wide for the 70 mm usable, and closing on its
+  // 4 cm height puts a finger under the floor.
+  const sim::World slab(scene({box("slab", V3(0.1, 0.1, 0.04), at(V3(0, 0, 0.02)))}, true));
+  const Existence none = find_any_grasp(slab, camera_along_x(), kGripper, 0);
+  EXPECT_FALSE(none.exists);
+  EXPECT_GT(none.tried, 1000u);
+  // The same slab raised off the floor can be held top to bottom.
+  const sim::World raised(scene({box("slab", V3(0.1, 0.1, 0.04), at(V3(0, 0, 0.3)))}, true));
+  EXPECT_TRUE(find_any_grasp(raised, camera_along_x(), kGripper, 0).exists);
+  EXPECT_THROW(find_any_grasp(slab, camera_along_x(), kGripper, 3), Error);
+}
 }  // namespace

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/core/rng.hpp"
 #include "uwgrasp/sim/world_impl.hpp"
 
 namespace uwgrasp::sim {
@@ -268,6 +269,38 @@ std::vector<int> inside_objects(const World& world, const V3& p) {
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<SurfaceSample> sample_object_surface(const World& world, int object, std::size_t count,
+                                                 std::uint64_t seed) {
+  const World::Impl& w = world.impl();
+  std::vector<std::pair<std::size_t, std::size_t>> tris;  // (geometry, triangle)
+  std::vector<double> cumulative;
+  double total = 0.0;
+  for (std::size_t g = 0; g < w.meshes.size(); ++g) {
+    if (w.owners[g].object != object) continue;
+    for (std::size_t t = 0; t < w.meshes[g].triangles.size(); ++t) {
+      const auto [a, b, c] = triangle(w, unsigned(g), unsigned(t));
+      total += 0.5 * (b - a).cross(c - a).norm();
+      tris.emplace_back(g, t);
+      cumulative.push_back(total);
+    }
+  }
+  if (tris.empty() || !(total > 0.0))
+    throw Error("sim: object " + std::to_string(object) + " has no surface to sample");
+  Rng rng(seed, 0x5AAF1E);
+  std::vector<SurfaceSample> out(count);
+  for (SurfaceSample& s : out) {
+    const std::size_t k = std::size_t(std::lower_bound(cumulative.begin(), cumulative.end(), rng.uniform() * total) -
+                                      cumulative.begin());
+    const auto [a, b, c] = triangle(w, unsigned(tris[std::min(k, tris.size() - 1)].first),
+                                    unsigned(tris[std::min(k, tris.size() - 1)].second));
+    double u = rng.uniform(), v = rng.uniform();
+    if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+    s.point = a + u * (b - a) + v * (c - a);
+    s.normal = (b - a).cross(c - a).normalized();
+  }
   return out;
 }
 

@@ -68,6 +68,14 @@ std::vector<ClippedTriangle> clip_to_box(const World& world, const OrientedBox& 
 // analytically, mesh parts by the winding number along three rays (majority).
 std::vector<int> inside_objects(const World& world, const Eigen::Vector3d& p);
 
+// `count` points spread over object `object`'s surface by area (seeded), with outward normals.
+struct SurfaceSample {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+};
+std::vector<SurfaceSample> sample_object_surface(const World& world, int object, std::size_t count,
+                                                 std::uint64_t seed);
+
 struct NearestSurface {
   double distance = 0.0;  // +inf when no object surface lies within the search radius
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
