@@ -180,6 +180,15 @@ std::vector<Grasp> score_robust(const ModelView& view, const LevelCloud& cloud, 
     g.robustness = share[k];
     g.scores.total = robust_total(g);
   }
+  // A grasp that holds on the model in none of its perturbed poses is not offered: "no grasp"
+  // is the honest answer when nothing the model shows can be held (e.g. a flat box on the
+  // seafloor), not a grasp the detector itself expects to fail. The candidates past the
+  // robust.candidates best-predicted are not measured and go the same way.
+  std::erase_if(all, [&](const Grasp& g) {
+    if (g.robustness > 0.0) return false;
+    pool.checks[g.candidate].reason = Reject::not_robust;
+    return true;
+  });
   rank(all, cfg.top);
   return all;
 }
@@ -287,8 +296,16 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
                                 out.frames, cfg.score, out.max_inliers);
   } else {
     const std::optional<Eigen::Vector4f> floor = around ? level_plane(*around, out.frames) : std::nullopt;
-    const ModelView view{bvh, model.cloud.points, model.cloud.normals, l.points.size(), out.shape, model.gripper,
-                         floor, 0.0005f + 2.0f * out.shape.noise, std::max(0.003f, 2.0f * out.shape.voxel)};
+    ModelView view{bvh, model.cloud.points, model.cloud.normals, l.points.size(), out.shape, model.gripper,
+                   floor, 0.0005f + 2.0f * out.shape.noise, std::max(0.003f, 2.0f * out.shape.voxel), nullptr, {}, {}};
+    LevelCloud core = l;
+    PointBvh core_bvh;
+    if (!out.shape.empty()) {
+      core.points.insert(core.points.end(), out.shape.core_points.begin(), out.shape.core_points.end());
+      core.normals.insert(core.normals.end(), out.shape.core_normals.begin(), out.shape.core_normals.end());
+      core_bvh = build_bvh(core.points);
+      view.core_bvh = &core_bvh, view.core_points = core.points, view.core_normals = core.normals;
+    }
     out.grasps = score_robust(view, model.cloud, pool, out, cfg.score, seed, timer);
   }
   timer.stop();

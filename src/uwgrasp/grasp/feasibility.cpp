@@ -243,7 +243,8 @@ const char* reject_name(Reject r) {
       "collision_palm", "collision_body",        "empty",
       "too_narrow",     "too_wide",              "occluded",
       "not_antipodal",  "too_few_inliers",       "hull_collision",
-      "scene_collision", "approach_blocked",     "cannot_hold"};
+      "scene_collision", "approach_blocked",     "cannot_hold",
+      "not_robust"};
   return names[static_cast<int>(r)];
 }
 

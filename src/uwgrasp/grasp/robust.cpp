@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <limits>
 
 #include "uwgrasp/core/rng.hpp"
 
@@ -28,7 +29,15 @@ bool blocked(const ModelView& m, const Candidate& c) {
 ContactPrediction predict(const ModelView& m, const Candidate& c) {
   std::vector<std::uint32_t> idx;
   closing_indices(m.bvh, m.gripper, c, idx);
-  return predict_contacts(m.points, m.normals, idx, c, m.band, m.radius, m.measured);
+  ContactPrediction p = predict_contacts(m.points, m.normals, idx, c, m.band, m.radius, m.measured);
+  if (m.core_bvh == nullptr || !p.valid) return p;
+  idx.clear();
+  closing_indices(*m.core_bvh, m.gripper, c, idx);
+  const ContactPrediction least =
+      predict_contacts(m.core_points, m.core_normals, idx, c, m.band, m.radius, m.measured);
+  p.valid = least.valid;
+  p.mu = least.valid ? std::max(p.mu, least.mu) : std::numeric_limits<float>::infinity();
+  return p;
 }
 
 bool holds_on_model(const ModelView& m, const Candidate& c, double mu) {

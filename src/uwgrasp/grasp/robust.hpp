@@ -34,9 +34,15 @@ struct ModelView {
   const Gripper& gripper;                            // grown by the collision margin
   std::optional<Eigen::Vector4f> floor;              // L, camera side positive
   float band = 0.0005f, radius = 0.003f;             // contact patch band, line radius (m)
+  // The least the object can be (shape.hpp's core): the camera's points, then the core surface,
+  // with its own BVH. Unset: only the model above is asked.
+  const PointBvh* core_bvh = nullptr;
+  std::span<const Eigen::Vector3f> core_points, core_normals;
 };
 
-// The predicted contacts of a candidate the check found feasible.
+// The predicted contacts of a candidate the check found feasible: on the model, and when the
+// view has a core, the worse of the two friction estimates (invalid when either side finds no
+// contacts - the pads would close on assumed volume alone).
 ContactPrediction predict(const ModelView& m, const Candidate& c);
 // Whether the candidate holds on the model at mu (check, inside, floor, width, force closure).
 bool holds_on_model(const ModelView& m, const Candidate& c, double mu);

@@ -94,32 +94,36 @@ void fill_unseen(Grid g, std::span<const V3> level, std::span<const V3> camera, 
     for (int t = 1; t <= steps; ++t) {
       const V3 p = (frames.level_from_camera * (c + u * (float(t) * s.voxel)).cast<double>()).cast<float>();
       const Eigen::Vector3i q = g.cell(p);
-      if (g.get(q.x(), q.y(), q.z()) == Occupancy::free && in_shadow(p))
-        s.cells[g.index(q.x(), q.y(), q.z())] = Occupancy::assumed;
+      const Occupancy o = g.get(q.x(), q.y(), q.z());
+      if ((o == Occupancy::free || o == Occupancy::assumed) && g.inside(q.x(), q.y(), q.z()) && in_shadow(p))
+        s.cells[g.index(q.x(), q.y(), q.z())] = Occupancy::thin;
     }
   }
 }
 
-// The assumed voxels next to a free one, with normals pointing away from the occupied mass
-// around them (the sum of the offsets of the occupied voxels in a 5 x 5 x 5 block, negated).
-void shell(Grid g) {
+// The unseen voxels (`part` says which) next to one outside the part (`outside`), with normals
+// pointing away from the part's mass around them (the sum of the offsets of the part's voxels
+// in a 5 x 5 x 5 block, negated).
+template <class Part, class Outside>
+void shell(Grid g, Part part, Outside outside, std::vector<V3>& points, std::vector<V3>& normals) {
   ObjectShape& s = g.s;
   for (int k = 0; k < s.nz; ++k)
     for (int j = 0; j < s.ny; ++j)
       for (int i = 0; i < s.nx; ++i) {
-        if (s.cells[g.index(i, j, k)] != Occupancy::assumed) continue;
-        const bool boundary = g.get(i - 1, j, k) == Occupancy::free || g.get(i + 1, j, k) == Occupancy::free ||
-                              g.get(i, j - 1, k) == Occupancy::free || g.get(i, j + 1, k) == Occupancy::free ||
-                              g.get(i, j, k - 1) == Occupancy::free || g.get(i, j, k + 1) == Occupancy::free;
+        const Occupancy o = s.cells[g.index(i, j, k)];
+        if (o == Occupancy::free || o == Occupancy::seen || !part(o)) continue;
+        const bool boundary = outside(g.get(i - 1, j, k)) || outside(g.get(i + 1, j, k)) ||
+                              outside(g.get(i, j - 1, k)) || outside(g.get(i, j + 1, k)) ||
+                              outside(g.get(i, j, k - 1)) || outside(g.get(i, j, k + 1));
         if (!boundary) continue;
         V3 n = V3::Zero();
         for (int dk = -2; dk <= 2; ++dk)
           for (int dj = -2; dj <= 2; ++dj)
             for (int di = -2; di <= 2; ++di)
-              if (g.get(i + di, j + dj, k + dk) != Occupancy::free) n -= V3(float(di), float(dj), float(dk));
+              if (!outside(g.get(i + di, j + dj, k + dk))) n -= V3(float(di), float(dj), float(dk));
         if (n.norm() < 1e-3f) continue;  // no side faces away from the mass: not a surface
-        s.points.push_back(g.centre(i, j, k));
-        s.normals.push_back(n.normalized());
+        points.push_back(g.centre(i, j, k));
+        normals.push_back(n.normalized());
       }
 }
 }  // namespace
@@ -153,7 +157,12 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
     return c.z() > 0.0f && map.at(c.x() / c.z(), c.y() / c.z()) < c.z() - tolerance;
   };
   fill_unseen(Grid{s}, level, camera, frames, floor, cfg, in_shadow);
-  shell(Grid{s});
+  const auto any = [](Occupancy) { return true; };
+  const auto is_free = [](Occupancy o) { return o == Occupancy::free; };
+  shell(Grid{s}, any, is_free, s.points, s.normals);
+  const auto is_thin = [](Occupancy o) { return o == Occupancy::thin; };
+  const auto beyond_core = [](Occupancy o) { return o == Occupancy::free || o == Occupancy::assumed; };
+  shell(Grid{s}, is_thin, beyond_core, s.core_points, s.core_normals);
   return s;
 }
 

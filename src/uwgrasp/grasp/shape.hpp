@@ -10,9 +10,14 @@
 //              head-on, without a top in view, still has some depth);
 //   free     - everything else: seen through, or beside and behind the object where nothing of
 //              it is above.
-// The unseen boundary of the assumed volume becomes virtual surface points with outward
-// normals, so that the collision check, the width at closure and the contacts see both sides
-// of the object; a gripper part wholly inside the volume is found by its centre's voxel.
+// The voxels within `min_thickness` behind a visible point are `thin`, the rest of the assumed
+// volume `assumed`: together they are the most the unseen part can be, thin alone the least
+// (a shell behind what was seen). The unseen boundary of the whole volume becomes virtual
+// surface points with outward normals, so that the collision check, the width at closure and
+// the contacts see both sides of the object; a gripper part wholly inside the volume is found
+// by its centre's voxel. The boundary of the thin core alone gives the `core` points: a grasp
+// whose contacts hold on both surfaces holds whatever the unseen part turns out to be between
+// them, and one that closes on assumed volume alone closes on nothing the camera saw.
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
@@ -37,7 +42,7 @@ struct ShapeConfig {
   float min_margin = 0.001f;
 };
 
-enum class Occupancy : std::uint8_t { free, seen, assumed };
+enum class Occupancy : std::uint8_t { free, seen, thin, assumed };
 
 struct ObjectShape {
   Eigen::Vector3f origin = Eigen::Vector3f::Zero();  // centre of voxel (0, 0, 0), L
@@ -46,6 +51,9 @@ struct ObjectShape {
   std::vector<Occupancy> cells;  // x fastest
   // The unseen surface: centres of assumed voxels next to a free one, in L, with outward normals.
   std::vector<Eigen::Vector3f> points, normals;
+  // The least unseen surface: thin voxels next to a free or assumed one, normals away from the
+  // seen and thin mass.
+  std::vector<Eigen::Vector3f> core_points, core_normals;
   float noise = 0.0f;  // the surface's measured noise (sigma, m), see surface_noise
 
   bool empty() const { return cells.empty(); }
