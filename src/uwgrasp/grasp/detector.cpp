@@ -10,7 +10,6 @@
 #include <string>
 
 #include "uwgrasp/cloud/kdtree.hpp"
-#include "uwgrasp/segment/objects.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/grasp/robust.hpp"
 
@@ -141,17 +140,30 @@ void reject_inside(const ObjectShape& shape, const Gripper& g, Pool& pool) {
 struct Model {
   LevelCloud cloud;
   Gripper gripper;
+  std::optional<Eigen::Vector4f> floor;  // L, from the surroundings' seafloor plane
+  LevelCloud core;  // the visible points and the shape's thin core (empty with the shape off)
 };
 Model object_model(const LevelCloud& l, const Cloud& object, const Gripper& g, const GraspConfig& cfg,
                    const Surroundings* around, ObjectGrasps& out) {
-  Model m{l, g};
+  Model m{l, g, around ? level_plane(*around, out.frames) : std::nullopt, {}};
   if (!cfg.shape.enabled) return m;
-  const auto floor = around ? level_plane(*around, out.frames) : std::nullopt;
-  out.shape = complete_shape(l.points, object.points, out.frames, floor, cfg.shape);
+  out.shape = complete_shape(l.points, object.points, out.frames, m.floor, cfg.shape);
   m.cloud.points.insert(m.cloud.points.end(), out.shape.points.begin(), out.shape.points.end());
   m.cloud.normals.insert(m.cloud.normals.end(), out.shape.normals.begin(), out.shape.normals.end());
+  m.core = l;
+  m.core.points.insert(m.core.points.end(), out.shape.core_points.begin(), out.shape.core_points.end());
+  m.core.normals.insert(m.core.normals.end(), out.shape.core_normals.begin(), out.shape.core_normals.end());
   m.gripper = grow_solids(g, std::max(cfg.shape.min_margin, cfg.shape.margin_sigmas * out.shape.noise));
   return m;
+}
+
+// What robust scoring asks the model: `core_bvh` is over m.core's points (unused without them).
+ModelView model_view(const Model& m, const PointBvh& bvh, const PointBvh& core_bvh, std::size_t measured,
+                     const ObjectShape& shape) {
+  ModelView v{bvh, m.cloud.points, m.cloud.normals, measured, shape, m.gripper, m.floor,
+              0.0005f + 2.0f * shape.noise, std::max(0.003f, 2.0f * shape.voxel), nullptr, {}, {}};
+  if (!m.core.points.empty()) v.core_bvh = &core_bvh, v.core_points = m.core.points, v.core_normals = m.core.normals;
+  return v;
 }
 
 // The robust mode's scoring (score.hpp): predicted contacts for every feasible candidate, the
@@ -295,97 +307,14 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
     out.grasps = score_and_rank(model.cloud.points, model.cloud.normals, pool.candidates, pool.checks,
                                 out.frames, cfg.score, out.max_inliers);
   } else {
-    const std::optional<Eigen::Vector4f> floor = around ? level_plane(*around, out.frames) : std::nullopt;
-    ModelView view{bvh, model.cloud.points, model.cloud.normals, l.points.size(), out.shape, model.gripper,
-                   floor, 0.0005f + 2.0f * out.shape.noise, std::max(0.003f, 2.0f * out.shape.voxel), nullptr, {}, {}};
-    LevelCloud core = l;
-    PointBvh core_bvh;
-    if (!out.shape.empty()) {
-      core.points.insert(core.points.end(), out.shape.core_points.begin(), out.shape.core_points.end());
-      core.normals.insert(core.normals.end(), out.shape.core_normals.begin(), out.shape.core_normals.end());
-      core_bvh = build_bvh(core.points);
-      view.core_bvh = &core_bvh, view.core_points = core.points, view.core_normals = core.normals;
-    }
+    const PointBvh core_bvh = model.core.points.empty() ? PointBvh{} : build_bvh(model.core.points);
+    const ModelView view = model_view(model, bvh, core_bvh, l.points.size(), out.shape);
     out.grasps = score_robust(view, model.cloud, pool, out, cfg.score, seed, timer);
   }
   timer.stop();
   out.candidates = pool.candidates.size();
   out.rejections = count_rejections(pool.checks);
   return out;
-}
-
-namespace {
-// The whole object the criterion picks among the processed cloud's connected objects;
-// `selected` becomes its largest segment.
-Cloud whole_object(const segment::Scene& scene, const segment::ObjectConfig& cfg, std::size_t& selected) {
-  const Cloud& c = scene.pre.cloud;
-  cloud::Neighbours own;
-  const cloud::Neighbours* nb = &scene.pre.neighbours;
-  if (nb->count.size() != c.size()) {  // radius-mode normals keep no lists: search them here
-    const cloud::KdTree tree(c.points);
-    own = cloud::knn_all(tree, c.points, 16);
-    nb = &own;
-  }
-  const float gap = cfg.gap > 0.0f ? cfg.gap : segment::connection_gap(*nb);
-  const segment::Objects objects = segment::connected_objects(c, *nb, gap, 10);
-  const std::size_t k = segment::select_whole_object(c, objects, scene.segmentation, cfg);
-  std::vector<std::uint32_t> points;
-  for (const std::size_t part : segment::gather_parts(c, objects, k, cfg, cfg.part_reach))
-    points.insert(points.end(), objects.points[part].begin(), objects.points[part].end());
-  std::sort(points.begin(), points.end());
-  std::vector<std::size_t> votes(scene.segmentation.segments.size(), 0);
-  for (const auto i : objects.points[k])
-    if (scene.segmentation.label[i] >= 0) ++votes[std::size_t(scene.segmentation.label[i])];
-  selected = std::size_t(std::max_element(votes.begin(), votes.end()) - votes.begin());
-  return select(c, points);
-}
-}  // namespace
-
-Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cfg,
-                    std::size_t& selected) {
-  if (scene.info.empty()) throw Error("segmentation found no segment to grasp");
-  if (cfg.whole) return whole_object(scene, cfg, selected);
-  selected = segment::select_object(scene.info, cfg);
-  std::vector<std::uint32_t> points;
-  for (const std::size_t s : segment::object_segments(scene.info, selected, cfg)) {
-    const auto& idx = scene.segmentation.segments[s];
-    points.insert(points.end(), idx.begin(), idx.end());
-  }
-  std::sort(points.begin(), points.end());
-  return select(scene.pre.cloud, points);
-}
-
-Surroundings surroundings(const segment::Scene& scene, std::vector<Eigen::Vector3f>& points,
-                          const Cloud* input) {
-  points = scene.pre.cloud.points;
-  const auto& out_of = scene.pre.output_of_input;
-  if (input != nullptr && out_of.size() == input->size()) {
-    float far = 0.0f;  // as far as the processed cloud reaches (the range crop stays cropped)
-    for (const auto& p : scene.pre.cloud.points) far = std::max(far, p.squaredNorm());
-    for (std::size_t i = 0; i < input->size(); ++i)
-      if (out_of[i] < 0 && !scene.pre.plane_of_input[i] && is_finite(input->points[i]) &&
-          input->points[i].squaredNorm() <= far)
-        points.push_back(input->points[i]);
-  }
-  return {points, scene.pre.plane.found, scene.pre.plane.coefficients};
-}
-
-Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
-                 const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed) {
-  Detection d;
-  d.scene = segment::segment_scene(input, pre, seg, seed);
-  d.timer = d.scene.timer;
-  d.timer.start("select");
-  d.object = object_points(d.scene, seg.object, d.segment);
-  d.timer.stop();
-  const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;
-  const Surroundings around = surroundings(d.scene, d.obstacles, &input);
-  d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);
-  return d;
-}
-
-Pose camera_from_gripper(const Grasp& g, const Frames& f) {
-  return f.level_from_camera.inverse() * g.level_from_gripper;
 }
 
 }  // namespace uwgrasp::grasp

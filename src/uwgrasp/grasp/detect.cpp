@@ -1,0 +1,88 @@
+// The whole pipeline from a cloud (detector.hpp): segment the scene, pick the object of
+// interest as a whole, gather what surrounds it, and find grasps on it (find_grasps, in
+// detector.cpp).
+#include <algorithm>
+#include <vector>
+
+#include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/detector.hpp"
+#include "uwgrasp/segment/objects.hpp"
+
+namespace uwgrasp::grasp {
+
+namespace {
+// The whole object the criterion picks among the processed cloud's connected objects;
+// `selected` becomes its largest segment.
+Cloud whole_object(const segment::Scene& scene, const segment::ObjectConfig& cfg, std::size_t& selected) {
+  const Cloud& c = scene.pre.cloud;
+  cloud::Neighbours own;
+  const cloud::Neighbours* nb = &scene.pre.neighbours;
+  if (nb->count.size() != c.size()) {  // radius-mode normals keep no lists: search them here
+    const cloud::KdTree tree(c.points);
+    own = cloud::knn_all(tree, c.points, 16);
+    nb = &own;
+  }
+  const float gap = cfg.gap > 0.0f ? cfg.gap : segment::connection_gap(*nb);
+  const segment::Objects objects = segment::connected_objects(c, *nb, gap, 10);
+  const std::size_t k = segment::select_whole_object(c, objects, scene.segmentation, cfg);
+  std::vector<std::uint32_t> points;
+  for (const std::size_t part : segment::gather_parts(c, objects, k, cfg, cfg.part_reach))
+    points.insert(points.end(), objects.points[part].begin(), objects.points[part].end());
+  std::sort(points.begin(), points.end());
+  std::vector<std::size_t> votes(scene.segmentation.segments.size(), 0);
+  for (const auto i : objects.points[k])
+    if (scene.segmentation.label[i] >= 0) ++votes[std::size_t(scene.segmentation.label[i])];
+  selected = std::size_t(std::max_element(votes.begin(), votes.end()) - votes.begin());
+  return select(c, points);
+}
+}  // namespace
+
+Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cfg,
+                    std::size_t& selected) {
+  if (scene.info.empty()) throw Error("segmentation found no segment to grasp");
+  if (cfg.whole) return whole_object(scene, cfg, selected);
+  selected = segment::select_object(scene.info, cfg);
+  std::vector<std::uint32_t> points;
+  for (const std::size_t s : segment::object_segments(scene.info, selected, cfg)) {
+    const auto& idx = scene.segmentation.segments[s];
+    points.insert(points.end(), idx.begin(), idx.end());
+  }
+  std::sort(points.begin(), points.end());
+  return select(scene.pre.cloud, points);
+}
+
+Surroundings surroundings(const segment::Scene& scene, std::vector<Eigen::Vector3f>& points,
+                          const Cloud* input) {
+  points = scene.pre.cloud.points;
+  const auto& out_of = scene.pre.output_of_input;
+  if (input != nullptr && out_of.size() == input->size()) {
+    float far = 0.0f;  // as far as the processed cloud reaches (the range crop stays cropped)
+    for (const auto& p : scene.pre.cloud.points) far = std::max(far, p.squaredNorm());
+    for (std::size_t i = 0; i < input->size(); ++i)
+      if (out_of[i] < 0 && !scene.pre.plane_of_input[i] && is_finite(input->points[i]) &&
+          input->points[i].squaredNorm() <= far)
+        points.push_back(input->points[i]);
+  }
+  return {points, scene.pre.plane.found, scene.pre.plane.coefficients};
+}
+
+Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
+                 const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed) {
+  Detection d;
+  d.scene = segment::segment_scene(input, pre, seg, seed);
+  d.timer = d.scene.timer;
+  d.timer.start("select");
+  d.object = object_points(d.scene, seg.object, d.segment);
+  d.timer.stop();
+  const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;
+  const Surroundings around = surroundings(d.scene, d.obstacles, &input);
+  d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);
+  return d;
+}
+
+Pose camera_from_gripper(const Grasp& g, const Frames& f) {
+  return f.level_from_camera.inverse() * g.level_from_gripper;
+}
+
+}  // namespace uwgrasp::grasp
