@@ -29,6 +29,10 @@ void print_table(const std::string& name, const segment::Scene& s, long selected
     const auto& m = s.pre.plane.coefficients;
     std::printf("plane: %zu inliers removed, n = (%.4f, %.4f, %.4f), d = %.4f m\n", c.plane, m[0],
                 m[1], m[2], m[3]);
+    if (s.pre.noise.found)
+      std::printf("depth noise on the plane: sigma(r) = %.2f mm + %.2f mm/m^2 r^2 (%.1f mm at 1 m, %.1f mm at 3 m)\n",
+                  1e3 * s.pre.noise.sigma0, 1e3 * s.pre.noise.sigma_k, 1e3 * s.pre.noise.at(1.0),
+                  1e3 * s.pre.noise.at(3.0));
   } else {
     std::printf("plane: none found\n");
   }

@@ -1,5 +1,6 @@
 #include "uwgrasp/cloud/preprocess.hpp"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -24,8 +25,29 @@ void apply(Filtered&& f, Cloud& cur, std::vector<std::int32_t>& map) {
   cur = std::move(f.cloud);
 }
 
+// The plane's inliers again, within max(distance, noise_sigmas x sigma(range)) of it: the noise
+// is measured twice, the second time in a band wide enough for the first estimate's spread.
+void widen_to_noise(const Cloud& cur, const PlaneConfig& cfg, Preprocessed& out) {
+  const Eigen::Vector4f& n = out.plane.coefficients;
+  float band = std::max(3.0f * cfg.distance, 0.02f);
+  out.noise = plane_noise(cur, n, band);
+  if (!out.noise.found) return;
+  float widest = 0.0f;
+  for (const auto i : out.plane.inliers)
+    widest = std::max(widest, float(out.noise.at((cur.points[i] - cur.viewpoint).norm())));
+  if (5.0f * widest > band) out.noise = plane_noise(cur, n, 5.0f * widest);
+  if (!out.noise.found) return;
+  out.plane.inliers.clear();
+  for (std::size_t i = 0; i < cur.size(); ++i) {
+    const Eigen::Vector3f& p = cur.points[i];
+    const double limit = std::max(double(cfg.distance), cfg.noise_sigmas * out.noise.at((p - cur.viewpoint).norm()));
+    if (std::abs(n.head<3>().dot(p) + n[3]) <= limit) out.plane.inliers.push_back(std::uint32_t(i));
+  }
+}
+
 void remove_plane(Cloud& cur, const PreprocessConfig& cfg, std::uint64_t seed, Preprocessed& out) {
   out.plane = fit_plane(cur, cfg.plane, seed);
+  if (out.plane.found && cfg.plane.noise_sigmas > 0.0f) widen_to_noise(cur, cfg.plane, out);
   if (!out.plane.found && cfg.plane.required)
     throw Error("preprocess: no plane found (preprocess.plane.distance = " +
                 std::to_string(cfg.plane.distance) + " m)");

@@ -11,6 +11,7 @@
 #include "uwgrasp/cloud/filters.hpp"
 #include "uwgrasp/cloud/normals.hpp"
 #include "uwgrasp/cloud/outliers.hpp"
+#include "uwgrasp/cloud/plane_noise.hpp"
 #include "uwgrasp/cloud/ransac.hpp"
 #include "uwgrasp/cloud/voxel.hpp"
 #include "uwgrasp/core/timer.hpp"
@@ -38,6 +39,7 @@ struct Preprocessed {
   // For every input point, true if the plane stage removed it (or the voxel that held it).
   std::vector<char> plane_of_input;
   PlaneResult plane;  // coefficients; inliers refer to the cloud the plane stage saw
+  NoiseModel noise;   // the depth noise measured on the plane (found only with noise_sigmas > 0)
   PreprocessCounts counts;
   // The kNN lists the normals were computed from (k = max(normals.k, share_k)), for later
   // stages on the same cloud; empty in radius mode.

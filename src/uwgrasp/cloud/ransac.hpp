@@ -16,6 +16,9 @@ struct PlaneConfig {
   double min_inlier_ratio = 0.05;     // a plane needs at least this share of the points
   bool refine = true;          // least-squares refit on the inliers, then reselect them
   bool required = false;       // no plane found is an error (otherwise the stage is a no-op)
+  // > 0: the inlier band widens to this many times the depth noise measured on the plane at
+  // each point's range (plane_noise.hpp); 0: the fixed `distance` alone (the thesis).
+  float noise_sigmas = 3.0f;
 };
 
 struct PlaneResult {

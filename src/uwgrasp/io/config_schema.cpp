@@ -38,6 +38,7 @@ void visit_preprocess(Visitor& v, cloud::PreprocessConfig& c) {
     v.field("min_inlier_ratio", c.plane.min_inlier_ratio, 0.0, 1.0);
     v.field("refine", c.plane.refine);
     v.field("required", c.plane.required);
+    v.field("noise_sigmas", c.plane.noise_sigmas, 0.0, 100.0);
   });
   v.section("normals", [&] {
     v.field("k", c.normals.k, 3, 1000);

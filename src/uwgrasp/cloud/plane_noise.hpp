@@ -1,0 +1,33 @@
+#pragma once
+// The sensor's depth noise, measured on the seafloor (not in the thesis, whose 1 cm plane
+// tolerance, 4.1.4, suits a perfect sensor). The seafloor is the one surface whose shape is
+// known - the fitted plane - and it is seen over a wide span of ranges, so its points' distances
+// from the plane, per range, are the noise: a robust spread per range bin, then
+// sigma(r) = sigma0 + sigma_k r^2, the law of structured-light and stereo depth error (Nguyen,
+// Izadi & Lovell 2012). The spread is along the plane's normal, the direction that decides which
+// points are seafloor. A noisy sensor leaves a fuzz of seafloor points outside a fixed tolerance,
+// and the grasp check then finds "obstacles" around every object's foot; the inlier band follows
+// the measured noise instead.
+#include <Eigen/Core>
+#include <cstddef>
+
+#include "uwgrasp/core/cloud.hpp"
+
+namespace uwgrasp::cloud {
+
+struct NoiseModel {
+  bool found = false;
+  double sigma0 = 0.0, sigma_k = 0.0;  // sigma(r) = sigma0 + sigma_k r^2, m and 1/m
+  int bins = 0;                        // range bins the fit used
+  double at(double range) const { return sigma0 + sigma_k * range * range; }
+};
+
+// The noise of the points near `plane` (n.p + d = 0, |n| = 1), ranges from cloud.viewpoint: in
+// bins of `bin` m, 1.4826 x the median distance from the plane of the points within `band` m of
+// it (the seafloor's points are most of each bin's, the objects' feet few), then the
+// least-squares law over the bins of at least `min_points`, clamped to sigma0, sigma_k >= 0.
+// Not found with fewer than two bins.
+NoiseModel plane_noise(const Cloud& cloud, const Eigen::Vector4f& plane, float band,
+                       double bin = 0.25, std::size_t min_points = 200);
+
+}  // namespace uwgrasp::cloud
