@@ -1,0 +1,128 @@
+// Whole objects (objects.hpp) on analytic scenes: the failure mode "wrong or partial object" - a
+// bright fragment taken for the object, one face of a box taken for the box, a handle left
+// behind - and what joins or keeps apart.
+#include <gtest/gtest.h>
+
+#include "shapes.hpp"
+#include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/segment/objects.hpp"
+
+namespace uwgrasp::segment {
+
+namespace {
+cloud::Neighbours neighbours(const Cloud& c, std::size_t k = 16) {
+  const cloud::KdTree tree(c.points);
+  return cloud::knn_all(tree, c.points, k);
+}
+
+Cloud painted(Cloud c, Rgb8 col) {
+  test::paint(c, col);
+  return c;
+}
+
+// Which object holds most of the points [from, to) of the cloud.
+std::size_t object_of_range(const Objects& o, std::size_t from, std::size_t to) {
+  std::vector<std::size_t> votes(o.points.size(), 0);
+  for (std::size_t i = from; i < to; ++i)
+    if (o.object_of_point[i] >= 0) ++votes[std::size_t(o.object_of_point[i])];
+  return std::size_t(std::max_element(votes.begin(), votes.end()) - votes.begin());
+}
+}  // namespace
+
+TEST(Objects, TwoBoxesApartAreTwoObjectsAndEachBoxIsOne) {
+  Cloud c = test::box_surface({0, 0, 1}, {0.06f, 0.06f, 1.06f}, 0.004f);
+  const std::size_t first = c.size();
+  test::append(c, test::box_surface({0.1f, 0, 1}, {0.16f, 0.06f, 1.06f}, 0.004f));  // 4 cm apart
+  const auto nb = neighbours(c);
+  const float gap = connection_gap(nb);
+  EXPECT_NEAR(gap, 0.012f, 0.002f);  // three times the 4 mm spacing
+  const Objects o = connected_objects(c, nb, gap, 10);
+  ASSERT_EQ(o.points.size(), 2u);
+  EXPECT_EQ(o.points[object_of_range(o, 0, first)].size(), first);  // every face of the box
+  EXPECT_EQ(o.points[object_of_range(o, first, c.size())].size(), c.size() - first);
+  // Too small a gap leaves points apart; components under min_points are not objects.
+  const Objects torn = connected_objects(c, nb, 0.001f, 10);
+  EXPECT_TRUE(torn.points.empty());
+  EXPECT_THROW(connected_objects(c, neighbours(test::sphere(50, 0.1f, {0, 0, 1})), gap, 10), Error);
+}
+
+TEST(Objects, TheGapStaysWithinItsBounds) {
+  EXPECT_FLOAT_EQ(connection_gap(neighbours(test::plane_grid(40, 0.04f, 1.0f))), 0.004f);  // 1 mm grid
+  EXPECT_FLOAT_EQ(connection_gap(neighbours(test::plane_grid(20, 1.0f, 1.0f))), 0.015f);   // 5 cm grid
+}
+
+// The case: a small, brightly red fragment (a chip on the seafloor) beside the dull red
+// body of the object of interest. By colour intensity alone the fragment wins; an object needs a
+// quarter of the most coloured object's coloured points to count, so the body is chosen.
+TEST(Objects, ABrightFragmentIsNotTakenForTheObject) {
+  Cloud c = painted(test::box_surface({0, 0, 1}, {0.08f, 0.12f, 1.08f}, 0.004f), {150, 40, 40});
+  const std::size_t body = c.size();
+  test::append(c, painted(test::box_surface({0.2f, 0, 1}, {0.22f, 0.02f, 1.02f}, 0.004f), {250, 10, 10}));
+  const auto nb = neighbours(c);
+  const Objects o = connected_objects(c, nb, connection_gap(nb), 10);
+  ASSERT_EQ(o.points.size(), 2u);
+  const ObjectConfig cfg;  // by colour, red
+  ASSERT_GT(color_intensity({250, 10, 10}, "red"), 2 * color_intensity({150, 40, 40}, "red"));
+  const std::size_t k = select_whole_object(c, o, Segmentation{}, cfg);
+  EXPECT_EQ(k, object_of_range(o, 0, body));
+  EXPECT_EQ(o.points[k].size(), body);
+  // Alone, the fragment is the object (nothing else is red).
+  ObjectConfig green = cfg;
+  green.color = "green";
+  EXPECT_THROW(select_whole_object(c, o, Segmentation{}, green), Error);
+}
+
+// A red handle seen apart from its red body (the joint is hidden) is a part of the object; a
+// blue object as close and a red object farther than part_reach are not.
+TEST(Objects, PartsOfTheSameColourJoinOthersDoNot) {
+  Cloud c = painted(test::box_surface({0, 0, 1}, {0.08f, 0.08f, 1.08f}, 0.004f), {200, 30, 30});
+  const std::size_t body = c.size();
+  test::append(c, painted(test::box_surface({0.03f, 0.11f, 1.0f}, {0.05f, 0.2f, 1.02f}, 0.004f), {200, 30, 30}));
+  const std::size_t handle = c.size();
+  test::append(c, painted(test::box_surface({0.11f, 0, 1}, {0.15f, 0.04f, 1.04f}, 0.004f), {30, 30, 200}));
+  const std::size_t blue = c.size();
+  test::append(c, painted(test::box_surface({-0.2f, 0, 1}, {-0.15f, 0.05f, 1.05f}, 0.004f), {200, 30, 30}));
+  const auto nb = neighbours(c);
+  const Objects o = connected_objects(c, nb, connection_gap(nb), 10);
+  ASSERT_EQ(o.points.size(), 4u);
+  ObjectConfig cfg;
+  const std::size_t k = select_whole_object(c, o, Segmentation{}, cfg);
+  ASSERT_EQ(k, object_of_range(o, 0, body));
+  const auto parts = gather_parts(c, o, k, cfg, cfg.part_reach);
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts[0], k);
+  EXPECT_EQ(parts[1], object_of_range(o, body, handle));
+  // Selecting by anything but colour gathers every object within reach, the blue one too.
+  cfg.by = ObjectBy::largest;
+  const auto any = gather_parts(c, o, k, cfg, cfg.part_reach);
+  ASSERT_EQ(any.size(), 3u);
+  EXPECT_EQ(any[2], object_of_range(o, handle, blue));
+  EXPECT_NE(std::count(any.begin(), any.end(), object_of_range(o, blue, c.size())), 1);
+}
+
+TEST(Objects, EachCriterionPicksAWholeObject) {
+  Cloud c = test::box_surface({0, 0, 1}, {0.1f, 0.1f, 1.1f}, 0.004f);  // large, far
+  const std::size_t big = c.size();
+  test::append(c, test::box_surface({0.3f, 0, 0.5f}, {0.34f, 0.04f, 0.54f}, 0.004f));  // small, near
+  const auto nb = neighbours(c);
+  const Objects o = connected_objects(c, nb, connection_gap(nb), 10);
+  ASSERT_EQ(o.points.size(), 2u);
+  const std::size_t a = object_of_range(o, 0, big), b = object_of_range(o, big, c.size());
+  ObjectConfig cfg;
+  cfg.by = ObjectBy::largest;
+  EXPECT_EQ(select_whole_object(c, o, Segmentation{}, cfg), a);
+  cfg.by = ObjectBy::nearest;
+  EXPECT_EQ(select_whole_object(c, o, Segmentation{}, cfg), b);
+  cfg.by = ObjectBy::point, cfg.point = Eigen::Vector3d(0.32, 0.02, 0.5);
+  EXPECT_EQ(select_whole_object(c, o, Segmentation{}, cfg), b);
+  Segmentation seg;
+  seg.segments = {{std::uint32_t(big + 3), std::uint32_t(big + 4)}};
+  cfg.by = ObjectBy::label, cfg.label = 0;
+  EXPECT_EQ(select_whole_object(c, o, seg, cfg), b);
+  cfg.label = 1;
+  EXPECT_THROW(select_whole_object(c, o, seg, cfg), Error);
+  EXPECT_THROW(select_whole_object(c, Objects{}, seg, cfg), Error);
+}
+
+}  // namespace uwgrasp::segment
