@@ -43,7 +43,10 @@ TEST(Detector, TopBarbellGraspsHoldAgainstTheWholeObject) {
   StageTimer t;
   const ObjectGrasps r = find_grasps(obj.cloud, cfg, 0.0, 1, t);
   ASSERT_FALSE(r.grasps.empty());
-  EXPECT_EQ(r.candidates, 3000u);
+  // The antipodal sampler stops once `enough` candidates passed every check.
+  EXPECT_LE(r.candidates, 3000u);
+  EXPECT_TRUE(r.candidates == 3000u ||
+              r.feasible() + r.rejections[std::size_t(Reject::not_robust)] >= cfg.sampler.enough);
   EXPECT_EQ(std::accumulate(r.rejections.begin(), r.rejections.end(), std::size_t(0)), r.candidates);
   const std::vector<Eigen::Vector3f> solid = fixtures::solid_points(fixtures::Object::barbell);
   const Gripper g = make_gripper(cfg.gripper);
@@ -116,6 +119,8 @@ TEST(Detector, WholeVehicleCheckUsesTheSceneAndTheSeafloor) {
   seg.color.enabled = true;
   GraspConfig cfg = for_view(obj.camera_pitch);
   cfg.sampler.sigma_theta = Eigen::Vector3d::Constant(0.3);  // mostly level: the hull meets the floor
+  // A sampler that does not itself try the checks: the same candidates with the check on and off.
+  cfg.sampler.kind = SamplerKind::normal;
   const Detection on = detect(scene, cloud::PreprocessConfig{}, seg, cfg, 1);
   cfg.reach.enabled = false;
   const Detection off = detect(scene, cloud::PreprocessConfig{}, seg, cfg, 1);
@@ -154,7 +159,8 @@ TEST(Detector, AutoPicksTheSamplerThatFindsGraspsOnTheRing) {
   StageTimer t;
   const ObjectGrasps r = find_grasps(ring.cloud, cfg, 0.0, 1, t);
   EXPECT_NE(r.sampler, SamplerKind::normal);
-  EXPECT_EQ(r.candidates, 3000u);
+  EXPECT_LE(r.candidates, 3000u);
+  EXPECT_GT(r.feasible(), 0u);
 }
 
 TEST(Detector, NoFeasibleGraspIsAnEmptyResultNotAnError) {

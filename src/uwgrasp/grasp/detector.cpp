@@ -7,10 +7,12 @@
 #include <numeric>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <string>
 
 #include "uwgrasp/cloud/kdtree.hpp"
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/gate.hpp"
 #include "uwgrasp/grasp/robust.hpp"
 
 namespace uwgrasp::grasp {
@@ -31,7 +33,9 @@ struct SampleInputs {
   const LevelCloud& model;
   const ObjectShape& shape;
   const Gripper& gripper;  // as checked (grown by the margin)
+  const Gate& gate;  // every check before scoring
 };
+
 
 std::vector<Candidate> sample(SamplerKind kind, const SampleInputs& in, const GraspConfig& cfg,
                               const Frames& f, std::uint64_t seed, std::uint32_t count,
@@ -48,9 +52,11 @@ std::vector<Candidate> sample(SamplerKind kind, const SampleInputs& in, const Gr
       const Box& palm = in.gripper.solids[int(Part::palm)];
       // From every surface the model has, unseen ones included: a bar seen end-on from above
       // shows no side to close on, its model does.
+      const std::uint32_t enough = cfg.sampler.enough == 0 ? count : cfg.sampler.enough;
+      const std::function<bool(const Candidate&)> clear = [&](const Candidate& c) { return in.gate.passes(c); };
       return sample_antipodal(in.model.points, in.model.normals, in.shape, cfg.sampler, R_BG,
-                              max_grasp_width(in.gripper),
-                              -palm.hi.x(), palm.half().y(), palm.half().z(), seed, count, first);
+                              max_grasp_width(in.gripper), -palm.hi.x(), palm.half().y(),
+                              palm.half().z(), seed, count, first, clear, enough);
     }
     default: return sample_normal(l.points, cfg.sampler, R_BG, seed, count, first);
   }
@@ -86,12 +92,6 @@ struct Pool {
   }
 };
 
-// The object's depth map and the gripper's part samples for the occlusion check.
-struct Shadow {
-  DepthMap map;
-  PartSamples samples;
-};
-
 // Runs f, keeping what it throws for the caller to raise.
 template <class F>
 void capture(F&& f, std::exception_ptr& error) {
@@ -119,20 +119,6 @@ PointBvh build_inputs(const LevelCloud& l, const Cloud& object, const Gripper& g
   for (const std::exception_ptr& e : {bvh_error, shadow_error})
     if (e) std::rethrow_exception(e);
   return bvh;
-}
-
-// Feasible candidates with a solid part wholly inside the object's shape (its centre in an
-// occupied voxel, no surface point inside it) collide with the part named.
-void reject_inside(const ObjectShape& shape, const Gripper& g, Pool& pool) {
-  tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
-    if (!pool.checks[i].feasible()) return;
-    const Candidate& c = pool.candidates[i];
-    for (int part = 0; part < kParts; ++part)
-      if (shape.occupied(c.rotation * g.solids[std::size_t(part)].centre() + c.position)) {
-        pool.checks[i].reason = static_cast<Reject>(int(Reject::collision_left_finger) + part);
-        return;
-      }
-  });
 }
 
 // The object's visible points and, with the shape on, its unseen surface; and the gripper the
@@ -192,62 +178,43 @@ std::vector<Grasp> score_robust(const ModelView& view, const LevelCloud& cloud, 
     g.robustness = share[k];
     g.scores.total = robust_total(g);
   }
-  // A grasp that holds on the model in none of its perturbed poses is not offered: "no grasp"
-  // is the honest answer when nothing the model shows can be held (e.g. a flat box on the
-  // seafloor), not a grasp the detector itself expects to fail. The candidates past the
-  // robust.candidates best-predicted are not measured and go the same way.
-  std::erase_if(all, [&](const Grasp& g) {
-    if (g.robustness > 0.0) return false;
-    pool.checks[g.candidate].reason = Reject::not_robust;
-    return true;
-  });
+  // A grasp that holds on the model in none of its perturbed poses is not offered (not_robust):
+  // "no grasp" is the honest answer when nothing the model shows can be held (e.g. a flat box
+  // on the seafloor), not a grasp the detector itself expects to fail. The candidates past the
+  // robust.candidates best-predicted are not measured: still feasible, but not offered either.
+  for (std::size_t k = 0; k < m; ++k)
+    if (all[order[k]].robustness <= 0.0) pool.checks[all[order[k]].candidate].reason = Reject::not_robust;
+  std::erase_if(all, [](const Grasp& g) { return g.robustness <= 0.0; });
   rank(all, cfg.top);
   return all;
 }
 
-// Feasible candidates with a solid part in the object's shadow become `occluded`.
-void reject_occluded(const Shadow& shadow, const Frames& f, const OcclusionConfig& cfg, Pool& pool) {
-  const DepthMap& map = shadow.map;
-  const PartSamples& samples = shadow.samples;
-  const Pose camera_from_level = f.level_from_camera.inverse();
-  tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
-    if (pool.checks[i].feasible() &&
-        occluded(map, samples, pool.candidates[i], camera_from_level, cfg))
-      pool.checks[i].reason = Reject::occluded;
-  });
-}
-
-// Feasible candidates the whole vehicle cannot take (reach.hpp).
-void reject_unreachable(const Cloud& object, const Surroundings* around, const Gripper& g,
-                        const Frames& f, const ReachConfig& cfg, Pool& pool) {
-  const std::vector<Solid> solids = vehicle_solids(g, f, cfg);
-  const Surroundings fallback{object.points};
-  const Obstacles o = make_obstacles(around ? *around : fallback, f);
-  tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
-    if (pool.checks[i].feasible()) pool.checks[i].reason = reach_check(o, solids, pool.candidates[i], cfg);
-  });
-}
-
 // automatic: a pilot share on each sampler, then the rest of the budget on the one that found
-// the most feasible candidates (ties: normal, uniform, surface - the thesis's order of use).
+// the most feasible candidates (ties: normal, uniform, surface, antipodal - the thesis's order of
+// use, then ours; antipodal only when the object has a shape model to close on).
 SamplerKind run_auto(const SampleInputs& in, const GraspConfig& cfg, const Frames& f,
                      const Gripper& g, const PointBvh& bvh, std::uint64_t seed, StageTimer& timer,
                      Pool& pool) {
   const auto n = cfg.sampler.samples;
   const auto pilot = static_cast<std::uint32_t>(std::lround(cfg.sampler.pilot * n));
+  std::vector<SamplerKind> kinds{SamplerKind::normal, SamplerKind::uniform, SamplerKind::surface};
+  if (!in.shape.empty()) kinds.push_back(SamplerKind::antipodal);
   SamplerKind best = SamplerKind::normal;
   std::size_t best_feasible = 0;
-  for (SamplerKind k : {SamplerKind::normal, SamplerKind::uniform, SamplerKind::surface}) {
+  for (SamplerKind k : kinds) {
     timer.start("sample");
     auto c = sample(k, in, cfg, f, seed, pilot, 0);
     timer.start("check");
     auto checks = check_candidates(bvh, g, c);
-    const std::size_t feasible = count_rejections(checks)[0];
+    std::size_t feasible = 0;
+    for (std::size_t i = 0; i < c.size(); ++i)
+      feasible += checks[i].feasible() && in.gate.after_check(c[i]) == Reject::none;
     if (feasible > best_feasible) best = k, best_feasible = feasible;
     pool.add(std::move(c), std::move(checks));
   }
+  const auto used = std::min<std::uint32_t>(n, std::uint32_t(kinds.size()) * pilot);
   timer.start("sample");
-  auto c = sample(best, in, cfg, f, seed, n - std::min(n, 3 * pilot), pilot);
+  auto c = sample(best, in, cfg, f, seed, n - used, pilot);
   timer.start("check");
   auto checks = check_candidates(bvh, g, c);
   pool.add(std::move(c), std::move(checks));
@@ -283,7 +250,10 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   const PointBvh bvh = build_inputs(model.cloud, object, model.gripper, cfg.occlusion, shadow);
   Pool pool;
   out.sampler = cfg.sampler.kind;
-  const SampleInputs inputs{l, model.cloud, out.shape, model.gripper};
+  const Surroundings scene = around ? *around : Surroundings{object.points};
+  const Gate gate({bvh, model.gripper, g, out.shape, out.frames, cfg.occlusion.enabled ? &shadow : nullptr,
+                   cfg.occlusion, cfg.reach, scene});
+  const SampleInputs inputs{l, model.cloud, out.shape, model.gripper, gate};
   if (cfg.sampler.kind == SamplerKind::automatic) {
     out.sampler = run_auto(inputs, cfg, out.frames, model.gripper, bvh, seed, timer, pool);
   } else {
@@ -293,15 +263,10 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
     auto checks = check_candidates(bvh, model.gripper, c);
     pool.add(std::move(c), std::move(checks));
   }
-  if (!out.shape.empty()) reject_inside(out.shape, model.gripper, pool);
-  if (cfg.occlusion.enabled) {
-    timer.start("occlusion");
-    reject_occluded(shadow, out.frames, cfg.occlusion, pool);
-  }
-  if (cfg.reach.enabled) {
-    timer.start("reach");
-    reject_unreachable(object, around, g, out.frames, cfg.reach, pool);
-  }
+  timer.start("reach");  // with the shape and the shadow
+  tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
+    if (pool.checks[i].feasible()) pool.checks[i].reason = gate.after_check(pool.candidates[i]);
+  });
   timer.start("score");
   if (cfg.score.mode == ScoreMode::thesis) {
     out.grasps = score_and_rank(model.cloud.points, model.cloud.normals, pool.candidates, pool.checks,

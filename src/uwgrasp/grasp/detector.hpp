@@ -43,7 +43,8 @@ struct ObjectGrasps {
 // The grasp engine on a segmented object (camera frame, with normals). `leaf` is the voxel size
 // for derived inlier maxima (0: the object's median point spacing). `around` is the rest of the
 // scene for the whole-vehicle check (cfg.reach; without it only the object is an obstacle).
-// Records "sample", "check", "occlusion", "reach" and "score" in `timer`. Throws Error for fewer
+// Records "sample", "check", "reach" (with the shape and shadow checks), "score" and "robust"
+// in `timer`. Throws Error for fewer
 // than 3 points, missing normals, an invalid gripper, sampler, reach or weights, or a vehicle
 // weight without a hold-cost function.
 ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double leaf,

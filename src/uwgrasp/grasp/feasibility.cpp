@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "uwgrasp/grasp/lanes.hpp"
 
@@ -237,34 +238,42 @@ struct Walker {
 };
 }  // namespace
 
-const char* reject_name(Reject r) {
-  static const char* names[kRejectKinds] = {
-      "feasible",       "collision_left_finger", "collision_right_finger",
-      "collision_palm", "collision_body",        "empty",
-      "too_narrow",     "too_wide",              "occluded",
-      "not_antipodal",  "too_few_inliers",       "hull_collision",
-      "scene_collision", "approach_blocked",     "cannot_hold",
-      "not_robust"};
-  return names[static_cast<int>(r)];
+struct Checker::State {
+  const PointBvh& bvh;
+  GripperLanes lanes;
+  Probe probe;
+};
+
+Checker::Checker(const PointBvh& bvh, const Gripper& g)
+    : gripper_(g), state_(std::make_shared<const State>(State{bvh, GripperLanes(g), Probe(bvh)})) {}
+
+Reject Checker::solids(const Candidate& c) const {
+  const lanes::Frame4 to_gripper(c.rotation.transpose(), c.position);
+  if (const Reject r = state_->probe.test(state_->lanes, to_gripper); r != Reject::none) return r;
+  const LocalFrame f = local_frame(gripper_, c, to_gripper);
+  return Walker{state_->bvh, state_->lanes, f}.solids(state_->bvh.top(), 0);
+}
+
+Check Checker::operator()(const Candidate& c) const {
+  Check out;
+  const lanes::Frame4 to_gripper(c.rotation.transpose(), c.position);
+  out.reason = state_->probe.test(state_->lanes, to_gripper);
+  if (out.reason != Reject::none) return out;
+  const LocalFrame f = local_frame(gripper_, c, to_gripper);
+  const Walker w{state_->bvh, state_->lanes, f};
+  out.reason = w.solids(state_->bvh.top(), 0);
+  if (out.reason != Reject::none) return out;
+  Closing acc{out};
+  w.closing(state_->bvh.top(), 0, acc);
+  acc.finish(gripper_);
+  return out;
 }
 
 std::vector<Check> check_candidates(const PointBvh& bvh, const Gripper& g,
                                     std::span<const Candidate> candidates) {
   std::vector<Check> out(candidates.size());
-  const GripperLanes gl(g);
-  const Probe probe(bvh);
-  tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
-    const lanes::Frame4 to_gripper(candidates[i].rotation.transpose(), candidates[i].position);
-    out[i].reason = probe.test(gl, to_gripper);
-    if (out[i].reason != Reject::none) return;
-    const LocalFrame f = local_frame(g, candidates[i], to_gripper);
-    const Walker w{bvh, gl, f};
-    out[i].reason = w.solids(bvh.top(), 0);
-    if (out[i].reason != Reject::none) return;
-    Closing acc{out[i]};
-    w.closing(bvh.top(), 0, acc);
-    acc.finish(g);
-  });
+  const Checker check(bvh, g);
+  tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) { out[i] = check(candidates[i]); });
   return out;
 }
 
@@ -301,12 +310,6 @@ void closing_indices(const PointBvh& bvh, const Gripper& g, const Candidate& c,
   const Walker w{bvh, gl, f};
   w.collect(bvh.top(), 0, out);
   std::sort(out.begin(), out.end());
-}
-
-RejectCounts count_rejections(std::span<const Check> checks) {
-  RejectCounts counts{};
-  for (const Check& c : checks) ++counts[static_cast<int>(c.reason)];
-  return counts;
 }
 
 }  // namespace uwgrasp::grasp

@@ -5,6 +5,7 @@
 // when the object's width at closure is outside what the gripper can hold.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -48,6 +49,21 @@ struct Check {
 };
 
 using RejectCounts = std::array<std::size_t, kRejectKinds>;
+
+// The check of one candidate at a time against the points under `bvh` (for samplers that try
+// a candidate's variants until one passes); cheap to copy, valid while bvh and g live.
+class Checker {
+ public:
+  Checker(const PointBvh& bvh, const Gripper& g);
+  Check operator()(const Candidate& c) const;
+  // The first solid part a point lies in (Reject::none: none), without the closing region.
+  Reject solids(const Candidate& c) const;
+
+ private:
+  struct State;
+  const Gripper& gripper_;
+  std::shared_ptr<const State> state_;
+};
 
 // Checks every candidate against the points under `bvh`, in parallel (result i for candidate i):
 // first the solid parts, stopping at the first point inside one, then the closing region.

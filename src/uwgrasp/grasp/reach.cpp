@@ -167,6 +167,13 @@ Reject reach_check(const Obstacles& o, std::span<const Solid> solids, const Cand
   });
 }
 
+Reject reach_plane_check(const Obstacles& o, std::span<const Solid> solids, const Candidate& c,
+                         const ReachConfig& cfg) {
+  return verdict(solids, [&](std::size_t k) {
+    return plane_hit(o, solids[k], c, float(cfg.standoff), float(cfg.floor_tolerance));
+  });
+}
+
 Reject reach_brute(std::span<const Eigen::Vector3f> level_points, const Obstacles& o,
                    std::span<const Solid> solids, const Candidate& c, const ReachConfig& cfg) {
   const float s = static_cast<float>(cfg.standoff);

@@ -62,6 +62,10 @@ std::optional<Eigen::Vector4f> level_plane(const Surroundings& s, const Frames& 
 // or goes through the seafloor), approach_blocked (hull or gripper on the way in).
 Reject reach_check(const Obstacles& o, std::span<const Solid> solids, const Candidate& c,
                    const ReachConfig& cfg);
+// reach_check against the seafloor plane alone (no scene points): a fraction of its cost, for
+// screening many poses before the full check.
+Reject reach_plane_check(const Obstacles& o, std::span<const Solid> solids, const Candidate& c,
+                         const ReachConfig& cfg);
 // Every point against every solid: the oracle for reach_check.
 Reject reach_brute(std::span<const Eigen::Vector3f> level_points, const Obstacles& o,
                    std::span<const Solid> solids, const Candidate& c, const ReachConfig& cfg);

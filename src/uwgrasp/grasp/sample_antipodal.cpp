@@ -2,7 +2,9 @@
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -37,12 +39,26 @@ float extent_along(const ObjectShape& shape, const V3& p, const V3& u, float lim
 float back_off(const ObjectShape& shape, const V3& centre, const V3& x, const V3& y, float palm_offset,
                float half_width, float half_height) {
   const V3 z = x.cross(y);
-  float reach = -std::numeric_limits<float>::max();
+  const float step = 0.5f * shape.voxel;
+  const int steps = int(2.0f * palm_offset / step);
+  int reach = -1;  // in steps; each line is scanned from the far end down to the reach so far
   for (const float a : {-1.0f, -0.5f, 0.0f, 0.5f, 1.0f})
     for (const float b : {-1.0f, 0.0f, 1.0f})
-      for (float t = 0.0f; t <= 2.0f * palm_offset; t += 0.5f * shape.voxel)
-        if (shape.occupied(centre + a * half_width * y + b * half_height * z - t * x)) reach = std::max(reach, t);
-  return std::max(0.0f, reach + 1.5f * shape.voxel - palm_offset);
+      for (int i = steps; i > reach; --i)
+        if (shape.occupied(centre + a * half_width * y + b * half_height * z - float(i) * step * x)) {
+          reach = i;
+          break;
+        }
+  if (reach < 0) return 0.0f;
+  return std::max(0.0f, float(reach) * step + 1.5f * shape.voxel - palm_offset);
+}
+
+Candidate oriented(const V3& position, const V3& x, const V3& y, std::uint32_t source) {
+  Candidate c;
+  c.position = position;
+  c.rotation.col(0) = x, c.rotation.col(1) = y, c.rotation.col(2) = x.cross(y);
+  c.source = static_cast<std::int32_t>(source);
+  return c;
 }
 
 V3 tilted(const V3& axis, Rng& rng, double sigma) {
@@ -52,25 +68,80 @@ V3 tilted(const V3& axis, Rng& rng, double sigma) {
   if (w_perp.norm() < 1e-12) return axis;
   return (Eigen::AngleAxisd(w_perp.norm(), w_perp.normalized()) * a).cast<float>().normalized();
 }
-}  // namespace
 
-std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
-                                        std::span<const Eigen::Vector3f> normals,
-                                        const ObjectShape& shape, const SamplerConfig& cfg,
-                                        const Eigen::Matrix3d& R_BG, float max_width,
-                                        float palm_offset, float palm_half_width,
-                                        float palm_half_height, std::uint64_t seed,
-                                        std::uint32_t count, std::uint32_t first) {
-  if (points.empty()) throw Error("antipodal sampler: the object cloud is empty");
-  if (normals.size() != points.size()) throw Error("antipodal sampler: the object has no normals");
-  if (shape.empty()) throw Error("antipodal sampler: needs the object's shape (grasp.shape.enabled)");
-  std::vector<Candidate> out(count);
-  const float gap = 2.0f * shape.voxel;
-  // The points worth drawing: a usable normal, and the model no wider than the gripper's usable
-  // aperture along it (on an object mostly wider than the gripper, the few graspable places).
+// One candidate: the drawn point's closing axis, approach and turns (see samplers.hpp); whether
+// it passed `clear` (with one).
+struct Draw {
+  std::span<const V3> points, normals;
+  const ObjectShape& shape;
+  const SamplerConfig& cfg;
+  const Eigen::Matrix3d& R_BG;
+  float max_width, palm_offset, palm_half_width, palm_half_height;
+  const std::vector<std::uint32_t>& eligible;
+  const std::function<bool(const Candidate&)>& clear;
+
+  bool operator()(Rng& rng, Candidate& c) const {
+    const float gap = 2.0f * shape.voxel;
+    bool passed = false;
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      const std::uint32_t j = eligible[rng.below(eligible.size())];
+      const V3 n = normals[j];
+      if (!(n.norm() > 0.5f)) continue;
+      const V3 y = tilted(-n.normalized(), rng, cfg.sigma_tilt);  // from the near pad into the object
+      const float width = extent_along(shape, points[j], y, max_width, gap);
+      const V3 x = approach(rng, y);
+      if (x.isZero()) continue;
+      passed = turn(points[j] + 0.5f * width * y, x, y, j, c);
+      if (clear ? passed : width <= max_width) break;
+    }
+    return passed;
+  }
+
+  // The gripper's approach at a drawn vehicle attitude, turned across the closing axis y; zero
+  // when the two are (nearly) parallel.
+  V3 approach(Rng& rng, const V3& y) const {
+    const Eigen::Vector3d rpy(rng.normal(0.0, cfg.sigma_theta.x()), rng.normal(0.0, cfg.sigma_theta.y()),
+                              rng.normal(0.0, cfg.sigma_theta.z()));
+    const V3 a = (quat_from_rpy(rpy).toRotationMatrix() * R_BG).col(0).cast<float>();
+    V3 x = a - a.dot(y) * y;
+    // Closing along the drawn approach leaves the approach's small remainder across it: the
+    // turns make any of its directions usable.
+    if (x.norm() < 1e-4f) return V3::Zero();
+    x.normalize();
+    // An approach climbing more than 20 degrees comes from below the object: mirrored, it
+    // comes from above, where a vehicle over the seafloor can be (L's z is down).
+    return x.z() < -0.34f ? V3(-x) : x;
+  }
+
+  // Of the approach x and its turns about the closing axis by 60, 120 and 180 degrees (nearest
+  // first, none from below), the first that passes `clear` (without one: whose palm clears the
+  // model within half a finger's back-off); else the one that backs off least. Backed off along
+  // its approach until the palm clears.
+  bool turn(const V3& mid, const V3& x, const V3& y, std::uint32_t j, Candidate& c) const {
+    float best_off = std::numeric_limits<float>::max();
+    for (int t = 0; t < 6; ++t) {
+      const int side = (t + 1) / 2 * (t % 2 ? 1 : -1);  // 0, +1, -1, +2, -2, +3 sixths
+      const V3 xt = Eigen::AngleAxisf(float(side) * float(std::numbers::pi) / 3.0f, y) * x;
+      if (xt.z() < -0.34f) continue;
+      const float off = back_off(shape, mid, xt, y, palm_offset, palm_half_width, palm_half_height);
+      const Candidate k = oriented(mid - off * xt, xt, y, j);
+      const bool passed = clear ? bool(clear(k)) : off <= 0.5f * palm_offset;
+      if (passed || off < best_off) best_off = off, c = k;
+      if (passed) return true;
+    }
+    return false;
+  }
+};
+
+// The points worth drawing: a usable normal, and the model no wider than the gripper's usable
+// aperture along it (on an object mostly wider than the gripper, the few graspable places);
+// every point when none is.
+std::vector<std::uint32_t> eligible_points(std::span<const V3> points, std::span<const V3> normals,
+                                           const ObjectShape& shape, float max_width) {
   std::vector<char> ok(points.size(), 0);
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t j) {
-    ok[j] = normals[j].norm() > 0.5f && extent_along(shape, points[j], -normals[j].normalized(), max_width, gap) <= max_width;
+    ok[j] = normals[j].norm() > 0.5f &&
+            extent_along(shape, points[j], -normals[j].normalized(), max_width, 2.0f * shape.voxel) <= max_width;
   });
   std::vector<std::uint32_t> eligible;
   for (std::uint32_t j = 0; j < points.size(); ++j)
@@ -79,47 +150,40 @@ std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
     eligible.resize(points.size());
     std::iota(eligible.begin(), eligible.end(), 0u);
   }
-  tbb::parallel_for(std::uint32_t(0), count, [&](std::uint32_t k) {
-    Rng rng(seed, kAntipodal + first + k);
-    Candidate& c = out[k];
-    for (int attempt = 0; attempt < 8; ++attempt) {
-      const std::uint32_t j = eligible[rng.below(eligible.size())];
-      const V3 n = normals[j];
-      if (!(n.norm() > 0.5f)) continue;
-      const V3 y = tilted(-n.normalized(), rng, cfg.sigma_tilt);  // from the near pad into the object
-      const float width = extent_along(shape, points[j], y, max_width, gap);
-      // The gripper's approach at a drawn vehicle attitude, turned across the closing axis.
-      const Eigen::Vector3d rpy(rng.normal(0.0, cfg.sigma_theta.x()), rng.normal(0.0, cfg.sigma_theta.y()),
-                                rng.normal(0.0, cfg.sigma_theta.z()));
-      const V3 a = (quat_from_rpy(rpy).toRotationMatrix() * R_BG).col(0).cast<float>();
-      V3 x = a - a.dot(y) * y;
-      // Closing along the drawn approach leaves the approach's small remainder across it: the
-      // turns below make any of its directions usable.
-      if (x.norm() < 1e-4f) continue;
-      x.normalize();
-      // An approach climbing more than 20 degrees comes from below the object: mirrored, it
-      // comes from above, where a vehicle over the seafloor can be (L's z is down).
-      if (x.z() < -0.34f) x = -x;
-      const V3 mid = points[j] + 0.5f * width * y;
-      // Of the drawn approach and its turns about the closing axis by 60, 120 and 180 degrees
-      // (nearest first, none from below), the first whose palm clears the model with the
-      // contacts still between the pads; else the one that backs off least.
-      float best_off = std::numeric_limits<float>::max();
-      V3 best_x = x;
-      for (int turn = 0; turn < 6 && best_off > 0.5f * palm_offset; ++turn) {
-        const int side = (turn + 1) / 2 * (turn % 2 ? 1 : -1);  // 0, +1, -1, +2, -2, +3 sixths
-        const V3 xt = Eigen::AngleAxisf(float(side) * float(std::numbers::pi) / 3.0f, y) * x;
-        if (xt.z() < -0.34f) continue;
-        const float off = back_off(shape, mid, xt, y, palm_offset, palm_half_width, palm_half_height);
-        if (off < best_off) best_off = off, best_x = xt;
-      }
-      x = best_x;
-      c.position = mid - best_off * x;
-      c.rotation.col(0) = x, c.rotation.col(1) = y, c.rotation.col(2) = x.cross(y);
-      c.source = static_cast<std::int32_t>(j);
-      if (width <= max_width) break;
-    }
-  });
+  return eligible;
+}
+}  // namespace
+
+std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
+                                        std::span<const Eigen::Vector3f> normals,
+                                        const ObjectShape& shape, const SamplerConfig& cfg,
+                                        const Eigen::Matrix3d& R_BG, float max_width,
+                                        float palm_offset, float palm_half_width,
+                                        float palm_half_height, std::uint64_t seed,
+                                        std::uint32_t count, std::uint32_t first,
+                                        const std::function<bool(const Candidate&)>& clear,
+                                        std::uint32_t enough) {
+  if (points.empty()) throw Error("antipodal sampler: the object cloud is empty");
+  if (normals.size() != points.size()) throw Error("antipodal sampler: the object has no normals");
+  if (shape.empty()) throw Error("antipodal sampler: needs the object's shape (grasp.shape.enabled)");
+  const std::vector<std::uint32_t> eligible = eligible_points(points, normals, shape, max_width);
+  const Draw draw{points, normals, shape, cfg, R_BG, max_width, palm_offset, palm_half_width,
+                  palm_half_height, eligible, clear};
+  // In blocks of a fixed size, so that where an early stop falls depends on the seed alone.
+  constexpr std::uint32_t kBlock = 256;
+  std::vector<Candidate> out(count);
+  std::vector<char> passed(count, 0);
+  std::uint32_t done = 0, pass = 0;
+  while (done < count && !(clear && pass >= enough)) {
+    const std::uint32_t end = std::min(count, done + kBlock);
+    tbb::parallel_for(done, end, [&](std::uint32_t k) {
+      Rng rng(seed, kAntipodal + first + k);
+      passed[k] = draw(rng, out[k]);
+    });
+    pass += std::uint32_t(std::count(passed.begin() + done, passed.begin() + end, 1));
+    done = end;
+  }
+  out.resize(done);
   return out;
 }
 

@@ -25,8 +25,9 @@ struct Grid {
     return i >= 0 && j >= 0 && k >= 0 && i < s.nx && j < s.ny && k < s.nz;
   }
   Eigen::Vector3i cell(const V3& p) const {
-    const V3 q = (p - s.origin) / s.voxel;
-    return {int(std::lround(q.x())), int(std::lround(q.y())), int(std::lround(q.z()))};
+    // floor(q + 1/2), not lround: the samplers ask millions of times, and lround is a call.
+    const V3 q = (p - s.origin) / s.voxel + V3::Constant(0.5f);
+    return {int(std::floor(q.x())), int(std::floor(q.y())), int(std::floor(q.z()))};
   }
   V3 centre(int i, int j, int k) const { return s.origin + s.voxel * V3(float(i), float(j), float(k)); }
   Occupancy get(int i, int j, int k) const { return inside(i, j, k) ? s.cells[index(i, j, k)] : Occupancy::free; }

@@ -49,6 +49,7 @@ void visit_sampler(Visitor& v, grasp::SamplerConfig& s) {
   v.field("alpha_p", s.alpha_p, 0.0, 100.0);
   v.field("pilot", s.pilot, 0.01, 1.0 / 3.0);
   v.field("sigma_tilt", s.sigma_tilt, 0.0, kPi);
+  v.field("enough", s.enough, 0, 1e8);
 }
 
 void visit_shape(Visitor& v, grasp::ShapeConfig& s) {

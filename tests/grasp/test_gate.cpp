@@ -1,0 +1,142 @@
+// The checks before scoring one candidate at a time (gate.hpp), the one-candidate gripper check
+// (Checker), and the antipodal sampler that tries a draw's turns until the checks pass.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+
+#include "objects.hpp"
+#include "uwgrasp/grasp/frames.hpp"
+#include "uwgrasp/grasp/gate.hpp"
+#include "uwgrasp/grasp/samplers.hpp"
+
+namespace uwgrasp::grasp {
+
+namespace {
+// The barbell's visible side, its shape model and the seafloor it rests on (world z = 0).
+struct Barbell {
+  fixtures::ObjectCloud obj = fixtures::render_object(fixtures::Object::barbell, {}, 20000);
+  Frames frames;
+  std::vector<Eigen::Vector3f> level, model, model_normals;
+  ObjectShape shape;
+  PointBvh bvh;
+  Gripper gripper = make_gripper({});
+  Surroundings scene;
+  OcclusionConfig occlusion;
+  ReachConfig reach;
+  Shadow shadow;
+
+  Barbell() {
+    FrameConfig fc;
+    fc.camera.rpy.y() = obj.camera_pitch;
+    frames = make_frames(fc);
+    level = points_to_level(obj.cloud.points, frames);
+    const Eigen::Vector3d n = obj.camera_from_world.linear().col(2);
+    const FloorPlane floor_c(float(n.x()), float(n.y()), float(n.z()),
+                             float(-n.dot(obj.camera_from_world.translation())));
+    scene = {obj.cloud.points, true, floor_c};
+    shape = complete_shape(level, obj.cloud.points, frames, level_plane(scene, frames), ShapeConfig{});
+    model = level;
+    model.insert(model.end(), shape.points.begin(), shape.points.end());
+    model_normals = directions_to_level(obj.cloud.normals, frames);
+    model_normals.insert(model_normals.end(), shape.normals.begin(), shape.normals.end());
+    bvh = build_bvh(model);
+    shadow = {make_depth_map(obj.cloud.points, occlusion.resolution), part_samples(gripper, occlusion.spacing)};
+  }
+  GateInputs inputs() const {
+    return {bvh, gripper, gripper, shape, frames, &shadow, occlusion, reach, scene};
+  }
+  std::vector<Candidate> antipodal(const std::function<bool(const Candidate&)>& clear, std::uint32_t count,
+                                   std::uint32_t enough = UINT32_MAX) const {
+    const Box& palm = gripper.solids[int(Part::palm)];
+    return sample_antipodal(model, model_normals, shape, SamplerConfig{}, frames.body_from_gripper.linear(),
+                            max_grasp_width(gripper), -palm.hi.x(), palm.half().y(), palm.half().z(), 7,
+                            count, 0, clear, enough);
+  }
+};
+
+bool same(const Candidate& a, const Candidate& b) {
+  return a.position == b.position && a.rotation == b.rotation && a.source == b.source;
+}
+}  // namespace
+
+// One candidate at a time gives exactly what the batch check gives.
+TEST(Gate, CheckerIsTheBatchCheckOneAtATime) {
+  const Barbell s;
+  const auto c = sample_normal(s.level, SamplerConfig{}, s.frames.body_from_gripper.linear(), 3, 1500);
+  const std::vector<Check> batch = check_candidates(s.bvh, s.gripper, c);
+  const Checker one(s.bvh, s.gripper);
+  std::size_t feasible = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const Check k = one(c[i]);
+    ASSERT_EQ(k.reason, batch[i].reason) << i;
+    EXPECT_EQ(k.inliers, batch[i].inliers);
+    EXPECT_EQ(k.width, batch[i].width);
+    EXPECT_EQ(k.left, batch[i].left);
+    EXPECT_EQ(k.right, batch[i].right);
+    // solids() names the same part, or none where the closing region decides
+    const Reject r = one.solids(c[i]);
+    EXPECT_TRUE(r == k.reason || (r == Reject::none && int(k.reason) > int(Reject::collision_body))) << i;
+    feasible += k.feasible();
+  }
+  EXPECT_GT(feasible, 0u);
+  EXPECT_LT(feasible, c.size());
+}
+
+// The cheap screens (voxels, the seafloor plane) only ever reject what the full checks reject.
+TEST(Gate, PassesIsTheCheckThenTheRest) {
+  const Barbell s;
+  const Gate gate(s.inputs());
+  const Checker check(s.bvh, s.gripper);
+  SamplerConfig sc;
+  sc.sigma_theta = Eigen::Vector3d::Constant(0.6);
+  const auto c = sample_uniform(s.level, sc, s.frames.body_from_gripper.linear(), 5, 3000);
+  std::array<std::size_t, kRejectKinds> why{};
+  std::size_t passed = 0;
+  for (const Candidate& k : c) {
+    const Check first = check(k);
+    const Reject full = first.feasible() ? gate.after_check(k) : first.reason;
+    ++why[std::size_t(full)];
+    ASSERT_EQ(gate.passes(k), full == Reject::none);
+    passed += gate.passes(k);
+  }
+  EXPECT_GT(passed, 0u);
+  EXPECT_GT(why[std::size_t(Reject::hull_collision)], 0u);  // the seafloor and the scene took part
+  EXPECT_GT(why[std::size_t(Reject::collision_palm)], 0u);
+}
+
+// The thesis's future work (9.3): a sampler whose candidates are mostly feasible. Drawn on the
+// object's model alone, most antipodal draws still put a part into the object or the hull into
+// the seafloor; trying each draw's turns against the checks keeps most of them.
+TEST(Gate, AntipodalDrawsThatTryTheChecksAreMostlyFeasible) {
+  const Barbell s;
+  const Gate gate(s.inputs());
+  const auto passes = [&](const Candidate& c) { return gate.passes(c); };
+  const auto share = [&](const std::vector<Candidate>& c) {
+    return double(std::count_if(c.begin(), c.end(), passes)) / double(c.size());
+  };
+  const double blind = share(s.antipodal({}, 1000));
+  const double tried = share(s.antipodal(passes, 1000));
+  EXPECT_GE(tried, 0.5);
+  EXPECT_GT(tried, 2.0 * blind) << "blind " << blind;
+}
+
+// Drawing stops at a block boundary once enough passed; the draws do not depend on threads.
+TEST(Gate, EarlyStopIsSeededAndIndependentOfThreadCount) {
+  const Barbell s;
+  const Gate gate(s.inputs());
+  const auto passes = [&](const Candidate& c) { return gate.passes(c); };
+  const auto many = s.antipodal(passes, 3000, 300);
+  ASSERT_LT(many.size(), 3000u);
+  EXPECT_EQ(many.size() % 256, 0u);
+  EXPECT_GE(std::count_if(many.begin(), many.end(), passes), 300);
+  std::vector<Candidate> one;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = s.antipodal(passes, 3000, 300);
+  }
+  ASSERT_EQ(one.size(), many.size());
+  for (std::size_t i = 0; i < one.size(); ++i) ASSERT_TRUE(same(one[i], many[i])) << i;
+}
+
+}  // namespace uwgrasp::grasp
