@@ -31,6 +31,9 @@ struct Totals {
   std::vector<double> top1;  // per mu: share of runs whose top-1 holds
   double robust = 0, p1 = 0, p10 = 0, ap = 0;
   std::size_t robust_n = 0;
+  double share = 0;                // mean feasible share of the candidates drawn
+  std::size_t share_n = 0;
+  std::vector<double> detect_ms;   // runs where detection ran
   std::map<std::string, std::size_t> modes;  // top-1 outcome (with collision detail)
 };
 
@@ -54,6 +57,10 @@ Totals totals(const std::vector<const JudgedCaseResult*>& cases, const JudgedPla
       t.errors += r.error.empty() ? 0 : 1;
       t.no_grasp += r.has_top1 ? 0 : 1;
       ++t.modes[top1_mode(r, plan.summary.reference_mu, c->grasp_exists)];
+      if (r.error.empty() && r.candidates > 0) {
+        t.share += double(r.feasible) / double(r.candidates), ++t.share_n;
+        t.detect_ms.push_back(r.detect_ms);
+      }
       if (!r.has_top1 && !c->grasp_exists) {  // "no grasp" is right: a success on every count
         for (double& v : t.top1) v += 1;
         t.p1 += 1, t.p10 += 1, t.ap += 1, t.robust += 1, ++t.robust_n;
@@ -68,6 +75,7 @@ Totals totals(const std::vector<const JudgedCaseResult*>& cases, const JudgedPla
   t.p1 /= n, t.p10 /= n, t.ap /= n;
   // A run without a grasp has no robust share: it counts as 0, like a failed grasp.
   t.robust /= n;
+  t.share /= double(std::max<std::size_t>(t.share_n, 1));
   return t;
 }
 
@@ -78,14 +86,16 @@ void success_row(std::ostringstream& md, const std::string& what, const Totals& 
   md << "| " << what << " | " << t.runs << " | " << (k < t.top1.size() ? pct(t.top1[k]) : "-") << " | ";
   for (std::size_t m = 0; m < t.top1.size(); ++m) md << (m ? " / " : "") << fmt("%.0f", 100 * t.top1[m]);
   md << " | " << pct(t.robust) << " | " << pct(t.p10) << " | " << fmt("%.3f", t.ap) << " | " << t.no_grasp
-     << " |\n";
+     << " | " << (t.share_n ? pct(t.share) : "-") << " | "
+     << (t.detect_ms.empty() ? "-" : fmt("%.0f", summarise(t.detect_ms).median)) << " |\n";
 }
 
 void success_header(std::ostringstream& md, const JudgedPlan& p, const char* first) {
   md << "| " << first << " | runs | top-1 success at mu " << io::shortest(p.summary.reference_mu)
      << " | top-1 at mu ";
   for (std::size_t m = 0; m < p.summary.mu.size(); ++m) md << (m ? "/" : "") << io::shortest(p.summary.mu[m]);
-  md << " (%) | robust top-1 | precision@10 | AP | no grasp |\n|---|---|---|---|---|---|---|---|\n";
+  md << " (%) | robust top-1 | precision@10 | AP | no grasp | feasible share | detect ms |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
 }
 
 void write_success(std::ostringstream& md, const std::vector<JudgedCaseResult>& results, const JudgedPlan& p) {
@@ -100,7 +110,9 @@ void write_success(std::ostringstream& md, const std::vector<JudgedCaseResult>& 
      << fmt("%.0f mm, %.0f deg", p.robust.sigma_position * 1000, p.robust.sigma_angle * 180 / std::numbers::pi)
      << ") of the top-1 that still hold at mu " << io::shortest(p.robust.mu)
      << ", averaged over iterations (0 without a grasp). Precision@10 and AP over the top "
-     << p.summary.top << " as graspnetAPI counts them (missing grasps fail).\n\n";
+     << p.summary.top << " as graspnetAPI counts them (missing grasps fail). Feasible share: the "
+        "candidates that passed every check before ranking, of those drawn (mean over the runs); "
+        "detect ms: the median whole detection (preprocessing to ranking) per run.\n\n";
   success_header(md, p, "water");
   for (const auto& w : waters) {
     std::vector<const JudgedCaseResult*> cs;

@@ -65,6 +65,7 @@ JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed
   }
   run.detect_ms = ms_since(t0);
   run.feasible = d.result.feasible();
+  run.candidates = d.result.candidates;
   run.object_points = d.object.size();
   const auto t1 = std::chrono::steady_clock::now();
   const eval::Camera cam{st.sim.world_from_camera, f.intrinsics, st.sim.render.camera.max_range};

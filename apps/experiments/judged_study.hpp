@@ -39,7 +39,7 @@ struct JudgedPlan {
 // One iteration of one case.
 struct JudgedRun {
   std::string error;          // detection stopped with this Error ("" when it ran)
-  std::size_t feasible = 0;
+  std::size_t feasible = 0, candidates = 0;  // passed every check, of those drawn
   std::size_t object_points = 0, visible_points = 0;  // detected object vs its visible pixels
   eval::Summary summary;      // over the top grasps
   double robust = std::numeric_limits<double>::quiet_NaN();
