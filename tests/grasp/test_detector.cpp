@@ -43,10 +43,9 @@ TEST(Detector, TopBarbellGraspsHoldAgainstTheWholeObject) {
   StageTimer t;
   const ObjectGrasps r = find_grasps(obj.cloud, cfg, 0.0, 1, t);
   ASSERT_FALSE(r.grasps.empty());
-  // The antipodal sampler stops once `enough` candidates passed every check.
+  // The antipodal sampler stops early only at the end of a block of 256 draws.
   EXPECT_LE(r.candidates, 3000u);
-  EXPECT_TRUE(r.candidates == 3000u ||
-              r.feasible() + r.rejections[std::size_t(Reject::not_robust)] >= cfg.sampler.enough);
+  EXPECT_TRUE(r.candidates == 3000u || r.candidates % 256 == 0) << r.candidates;
   EXPECT_EQ(std::accumulate(r.rejections.begin(), r.rejections.end(), std::size_t(0)), r.candidates);
   const std::vector<Eigen::Vector3f> solid = fixtures::solid_points(fixtures::Object::barbell);
   const Gripper g = make_gripper(cfg.gripper);
@@ -172,7 +171,11 @@ TEST(Detector, NoFeasibleGraspIsAnEmptyResultNotAnError) {
   const ObjectGrasps r = find_grasps(obj.cloud, cfg, 0.0, 1, t);
   EXPECT_TRUE(r.grasps.empty());
   EXPECT_EQ(r.feasible(), 0u);
-  EXPECT_EQ(std::accumulate(r.rejections.begin(), r.rejections.end(), std::size_t(0)), 3000u);
+  // Every candidate drawn is accounted for; where nothing passes, the antipodal sampler stops
+  // once its checks cost 16 per candidate on average, well short of the 3000.
+  EXPECT_EQ(std::accumulate(r.rejections.begin(), r.rejections.end(), std::size_t(0)), r.candidates);
+  EXPECT_GT(r.candidates, 0u);
+  EXPECT_LT(r.candidates, 3000u);
 }
 
 TEST(Detector, BadInputIsAClearError) {

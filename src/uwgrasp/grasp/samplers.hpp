@@ -76,7 +76,8 @@ struct ObjectShape;  // shape.hpp
 // check), every turn is tried in that order until one passes it, and a draw none of whose turns
 // passes is drawn again (up to 8 times): most draws otherwise put a finger, the palm or the body
 // into the object somewhere along the approach. Drawing stops early, after a block of 256, once
-// `enough` candidates passed `clear` (fewer than `count` are then returned).
+// `enough` candidates passed `clear` or `clear` was called 16 times per candidate on average
+// (fewer than `count` are then returned).
 std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
                                         std::span<const Eigen::Vector3f> normals,
                                         const ObjectShape& shape, const SamplerConfig& cfg,
