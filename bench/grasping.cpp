@@ -92,7 +92,7 @@ void table_8_4(const std::vector<Input>& inputs) {
       StageTimer t;
       const auto res = grasp::find_grasps(*c, cfg, 0.0025, 1, t);
       ts.push_back(t.ms("sample")), tc.push_back(t.ms("check")), tsc.push_back(t.ms("score"));
-      to.push_back(t.ms("occlusion"));
+      to.push_back(t.ms("reach"));  // the shadow, shape and reach checks after the gripper's
       feasible = res.feasible();
       // Everything the check passed: feasible, or rejected by a later stage.
       collision_free = res.feasible();

@@ -61,7 +61,7 @@ json timing_json(const StageTimer& t) {
   return {{"preprocess", pre},
           {"segment", t.ms("segment") + t.ms("select")},
           {"sample", t.ms("sample")},
-          {"check", t.ms("check") + t.ms("occlusion") + t.ms("reach")},
+          {"check", t.ms("check") + t.ms("reach")},
           {"score", t.ms("score")},
           {"total", t.total_ms()}};
 }
