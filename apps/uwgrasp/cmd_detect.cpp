@@ -143,6 +143,7 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
     progress("uwgrasp detect: " + std::to_string(input.size()) + " points, detecting");
     const grasp::Detection d =
         grasp::detect(input, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed);
+    std::printf("path: %s\n", cloud::path_summary(input, cfg.preprocess).c_str());
     print_detection(o->cloud, d, cfg);
     if (!o->json.empty()) {
       io::write_json(o->json, io::grasps_to_json(d, cfg, o->cloud, UWGRASP_VERSION));

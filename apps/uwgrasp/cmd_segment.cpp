@@ -110,6 +110,7 @@ void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>
         selected = -1;  // the table still lists every segment
       }
     }
+    std::printf("path: %s\n", cloud::path_summary(input, cfg.preprocess).c_str());
     print_table(o->cloud, scene, selected, cfg.segment.object.color);
     if (!o->out_dir.empty()) write_outputs(*o, input, scene);
     if (!o->png.empty()) {

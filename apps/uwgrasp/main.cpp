@@ -5,9 +5,11 @@
 #include "app/common.hpp"
 #include "commands.hpp"
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/core/memory.hpp"
 
 int main(int argc, char** argv) {
   using namespace uwgrasp::app;
+  uwgrasp::keep_freed_memory();  // experiments and bags run many frames in one process
   CLI::App app{"uwgrasp " UWGRASP_VERSION
                " - grasp poses for an underwater vehicle with a rigidly mounted gripper"};
   app.require_subcommand(1, 1);

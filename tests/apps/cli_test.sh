@@ -57,26 +57,26 @@ if [[ -f "$MUG" ]]; then
   fi
   # detect: bad values are named, nothing is written.
   J="$T/out/grasps.json"
-  expect 2 "grasp.gripper.max_aperture" -- detect "$MUG" --object label:3 --set grasp.gripper.max_aperture=-0.01 --json "$J"
-  expect 2 "sum to 0" -- detect "$MUG" --object label:3 --set grasp.score.weights.normal=0 \
+  expect 2 "grasp.gripper.max_aperture" -- detect "$MUG" --object nearest --set grasp.gripper.max_aperture=-0.01 --json "$J"
+  expect 2 "sum to 0" -- detect "$MUG" --object nearest --set grasp.score.weights.normal=0 \
     --set grasp.score.weights.orientation=0 --set grasp.score.weights.contact=0 \
     --set grasp.score.weights.inliers=0 --json "$J"
   expect 2 "--object" -- detect "$MUG" --object colour --json "$J"
   expect 2 "does not exist" -- detect "$MUG" --object label:399 --json "$J"
-  # A good run on the mug (segment 9): the best grasp is printed and grasps.json written.
-  if "$BIN" detect "$MUG" --object label:3 --json "$T/d1.json" --threads 1 >"$T/stdout" 2>"$T/stderr" &&
+  # A good run on the mug (the nearest object): the best grasp is printed and grasps.json written.
+  if "$BIN" detect "$MUG" --object nearest --json "$T/d1.json" --threads 1 >"$T/stdout" 2>"$T/stderr" &&
      grep -q "best grasp" "$T/stdout" && grep -q '"orientation_xyzw"' "$T/d1.json"; then
     passes=$((passes + 1))
   else
     echo "FAIL: good detect run: $(cat "$T/stderr")"; fails=$((fails + 1))
   fi
   # Same seed, same grasps.json at 1 and 2 threads (wall-clock times and the thread count aside).
-  "$BIN" detect "$MUG" --object label:3 --json "$T/d2.json" --threads 2 >/dev/null 2>&1
+  "$BIN" detect "$MUG" --object nearest --json "$T/d2.json" --threads 2 >/dev/null 2>&1
   strip() { sed '/"timing_ms": {/,/}/d; /"threads":/d' "$1"; }
   if diff <(strip "$T/d1.json") <(strip "$T/d2.json") >/dev/null; then passes=$((passes + 1)); else
     echo "FAIL: grasps.json differs between 1 and 2 threads"; fails=$((fails + 1)); fi
   # Nothing fits between the fingers: exit 0, an empty list and the rejection counts.
-  if "$BIN" detect "$MUG" --object label:3 --set grasp.gripper.max_aperture=0.004 \
+  if "$BIN" detect "$MUG" --object nearest --set grasp.gripper.max_aperture=0.004 \
        --set grasp.gripper.clearance=0 --json "$T/none.json" >"$T/stdout" 2>"$T/stderr" &&
      grep -q "no feasible grasp" "$T/stdout" && grep -q '"grasps": \[\]' "$T/none.json"; then
     passes=$((passes + 1))

@@ -160,14 +160,17 @@ std::pair<std::size_t, std::size_t> seen_and_taken(const sim::Scene& scene, cons
 }
 }  // namespace
 
-// A box turned 30 degrees to the view, seen by the noisy sensor: region growing shatters it into
-// fragments and the thesis's selection takes one as the object (84 of its 8,006 points), so the
-// grasp engine never sees the box. The whole connected object is the box.
+// A box turned 30 degrees to the view, seen by the noisy sensor: region growing over k-nearest
+// neighbours shatters it into fragments and the thesis's selection takes one as the object (84
+// of its 8,006 points), so the grasp engine never sees the box. The whole connected object is
+// the box. (The organised path's 7 x 7 normals shatter it less - it takes a face of 4,371 points
+// - so the fragment is reproduced on the k-d tree path the thesis used.)
 TEST(Holds, TheWholeObjectNotOneFace) {
   sim::SceneObject o = solid("box", sim::Shape{.size = V3(0.05, 0.09, 0.12)}, V3(0, 0, 0.06));
   o.pose.linear() = Eigen::AngleAxisd(0.52, V3::UnitZ()).toRotationMatrix();
   io::Config thesis;
   thesis.segment.object.whole = false;
+  thesis.preprocess.organised.enabled = false;
   const auto [seen, face] = seen_and_taken(on_floor(o), thesis, true);
   const auto [seen2, whole] = seen_and_taken(on_floor(o), io::Config{}, true);
   ASSERT_GT(seen, 2000u);

@@ -34,9 +34,12 @@ class KdTree {
 };
 
 // k nearest neighbours of many query points, computed in parallel: row i holds count[i] valid
-// entries of indices/sq_dists starting at i*k, nearest first.
+// entries of indices/sq_dists starting at i*k, nearest first. Lists from an organised frame's
+// pixel windows (organised.hpp) have `window` set: each row is the point itself, then its whole
+// window's neighbours in pixel order, not sorted by distance - consumers take every entry.
 struct Neighbours {
   std::size_t k = 0;
+  bool window = false;
   std::vector<std::uint32_t> indices;
   std::vector<float> sq_dists;
   std::vector<std::uint32_t> count;

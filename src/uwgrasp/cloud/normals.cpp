@@ -11,20 +11,25 @@
 
 namespace uwgrasp::cloud {
 
+PointNormal normal_from_covariance(const Eigen::Matrix3d& cov, const Eigen::Vector3f& at,
+                                  const Eigen::Vector3f& viewpoint) {
+  PointNormal out;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(cov);
+  const Eigen::Vector3d l = es.eigenvalues().cwiseMax(0.0);  // ascending
+  Eigen::Vector3f n = es.eigenvectors().col(0).cast<float>().normalized();
+  if (n.dot(viewpoint - at) < 0.0f) n = -n;  // eq. 4.6
+  const double sum = l.sum();
+  out.normal = n;
+  out.curvature = sum > 0.0 ? static_cast<float>(l[0] / sum) : 0.0f;  // eq. 4.7
+  return out;
+}
+
 PointNormal normal_from(std::span<const Eigen::Vector3f> points,
                         std::span<const std::uint32_t> neighbours, const Eigen::Vector3f& at,
                         const Eigen::Vector3f& viewpoint) {
-  PointNormal out;
-  if (neighbours.size() < 3) return out;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(mean_covariance(points, neighbours).cov);  // eq. 4.4-4.5
-  const Eigen::Vector3d l = es.eigenvalues().cwiseMax(0.0);  // ascending
-  Eigen::Vector3f n = es.eigenvectors().col(0).cast<float>().normalized();
-  if (n.dot(viewpoint - at) < 0.0f) n = -n;
-  const double sum = l.sum();
-  out.normal = n;
-  out.curvature = sum > 0.0 ? static_cast<float>(l[0] / sum) : 0.0f;
-  return out;
+  if (neighbours.size() < 3) return {};
+  return normal_from_covariance(mean_covariance(points, neighbours).cov, at, viewpoint);  // eq. 4.4-4.5
 }
 
 void compute_normals(Cloud& cloud, const NormalConfig& cfg, const Neighbours& nb) {

@@ -27,6 +27,10 @@ PointNormal normal_from(std::span<const Eigen::Vector3f> points,
                         std::span<const std::uint32_t> neighbours, const Eigen::Vector3f& at,
                         const Eigen::Vector3f& viewpoint);
 
+// The same from the covariance C already computed (any positive scale).
+PointNormal normal_from_covariance(const Eigen::Matrix3d& cov, const Eigen::Vector3f& at,
+                                   const Eigen::Vector3f& viewpoint);
+
 // Fills cloud.normals and cloud.curvature for every point (in parallel). Points must be finite.
 void compute_normals(Cloud& cloud, const NormalConfig& cfg);
 

@@ -28,24 +28,21 @@ Filtered unchanged(const Cloud& in) {
   make_unorganised(all.cloud);
   return all;
 }
+}  // namespace
 
-Filtered remove_above_threshold(const Cloud& in, const OutlierConfig& cfg,
-                                const std::vector<float>& mean) {
-  // mu and the sample standard deviation over all points, summed in order (deterministic).
-  double sum = 0.0, sq_sum = 0.0;
-  for (float m : mean) {
-    sum += m;
-    sq_sum += static_cast<double>(m) * m;
-  }
-  const double n = static_cast<double>(mean.size());
-  const double mu = sum / n;
-  const double var = std::max(0.0, (sq_sum - sum * sum / n) / (n - 1.0));
+Filtered remove_outliers_by(const Cloud& in, const OutlierConfig& cfg,
+                            const std::vector<float>& mean) {
+  // mu and the sample standard deviation over the points, summed in order (deterministic).
+  double sum = 0.0, sq_sum = 0.0, n = 0.0;
+  for (float m : mean)
+    if (std::isfinite(m)) sum += m, sq_sum += static_cast<double>(m) * m, n += 1.0;
+  const double mu = n > 0.0 ? sum / n : 0.0;
+  const double var = n > 1.0 ? std::max(0.0, (sq_sum - sum * sum / n) / (n - 1.0)) : 0.0;
   const double threshold = mu + cfg.std_mul * std::sqrt(var);
   std::vector<char> keep(in.size());
   for (std::size_t i = 0; i < in.size(); ++i) keep[i] = mean[i] <= threshold;
   return keep_if(in, keep);
 }
-}  // namespace
 
 std::vector<float> mean_neighbour_distances(const Cloud& in, std::uint32_t k) {
   const KdTree tree(in.points);
@@ -62,12 +59,12 @@ std::vector<float> mean_neighbour_distances(const Cloud& in, std::uint32_t k) {
 
 Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg) {
   if (keeps_all(in, cfg)) return unchanged(in);
-  return remove_above_threshold(in, cfg, mean_neighbour_distances(in, cfg.k));
+  return remove_outliers_by(in, cfg, mean_neighbour_distances(in, cfg.k));
 }
 
 Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg, const Neighbours& nb) {
   if (keeps_all(in, cfg)) return unchanged(in);
-  if (nb.count.size() != in.size() || nb.k < std::size_t{cfg.k} + 1)
+  if (nb.count.size() != in.size() || nb.window || nb.k < std::size_t{cfg.k} + 1)
     throw Error("outliers: the shared neighbour lists do not fit this cloud");
   std::vector<float> mean(in.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.size(), 1024), [&](const auto& r) {
@@ -76,7 +73,7 @@ Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg, const Neighb
       mean[i] = mean_after_first(nb.dists_of(i).first(n));
     }
   });
-  return remove_above_threshold(in, cfg, mean);
+  return remove_outliers_by(in, cfg, mean);
 }
 
 }  // namespace uwgrasp::cloud

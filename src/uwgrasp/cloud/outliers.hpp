@@ -19,6 +19,12 @@ struct OutlierConfig {
 Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg);
 // The same from neighbour lists already found for this cloud (knn_all over its own points with
 // nb.k >= cfg.k + 1, each list holding the point itself first): the same points are removed.
+
+// The same from each point's mean neighbour distance, found by the caller (e.g. over an
+// organised frame's pixel windows); an infinite mean (no neighbour at all) is removed and left
+// out of mu and sigma.
+Filtered remove_outliers_by(const Cloud& in, const OutlierConfig& cfg,
+                            const std::vector<float>& mean);
 Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg, const Neighbours& nb);
 
 // The per-point mean neighbour distances (exposed for tests and diagnostics).

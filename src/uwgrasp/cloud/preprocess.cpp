@@ -124,6 +124,76 @@ void require_points(const Cloud& c, const char* stage) {
   if (c.empty()) throw Error(std::string("preprocess: no points left after the ") + stage +
                              " stage");
 }
+
+bool takes_organised_path(const Cloud& in, const PreprocessConfig& cfg) {
+  return in.organised() && cfg.organised.enabled && !cfg.voxel.enabled &&
+         cfg.normals.radius <= 0.0f;
+}
+
+// The pixel of every point still in play, from the input map (input index = pixel index).
+PixelMap pixels_in_play(const Cloud& in, const std::vector<std::int32_t>& output_of_input,
+                        std::size_t size) {
+  std::vector<std::uint32_t> pixel(size);
+  for (std::size_t i = 0; i < output_of_input.size(); ++i)
+    if (output_of_input[i] >= 0) pixel[std::size_t(output_of_input[i])] = std::uint32_t(i);
+  return pixel_map(in.width, in.height, std::move(pixel));
+}
+
+// Invalid values (4.1.1) and the range crop in one pass that keeps each point's pixel.
+Cloud valid_points(const Cloud& in, const RangeConfig& range, Preprocessed& out) {
+  std::vector<std::uint32_t> kept;
+  kept.reserve(in.size());
+  const float lo2 = range.min * range.min, hi2 = range.max * range.max;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    if (!is_finite(in.points[i])) continue;
+    ++out.counts.finite;
+    const float r2 = (in.points[i] - in.viewpoint).squaredNorm();
+    if (!range.enabled || (r2 >= lo2 && r2 <= hi2)) kept.push_back(std::uint32_t(i));
+  }
+  if (out.counts.finite == 0)
+    throw Error("input cloud has no finite point (all x/y/z are NaN or Inf)");
+  out.counts.in_range = out.counts.voxels = kept.size();
+  std::fill(out.output_of_input.begin(), out.output_of_input.end(), -1);
+  for (std::size_t j = 0; j < kept.size(); ++j) out.output_of_input[kept[j]] = std::int32_t(j);
+  return select(in, kept);
+}
+
+// The chain on an organised frame (preprocess.hpp): the same stages, neighbourhoods from pixel
+// windows.
+void preprocess_organised(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed,
+                          StageTimer& timer, Preprocessed& out) {
+  out.organised = true;
+  timer.start("finite");
+  Cloud cur = valid_points(in, cfg.range, out);
+  require_points(cur, "range");
+  if (cfg.water.enabled) {
+    timer.start("color");
+    restore_colors(cur, cfg.water);
+  }
+  if (cfg.plane.enabled) {
+    timer.start("plane");
+    remove_plane(cur, cfg, seed, out);
+  }
+  timer.start("outliers");
+  PixelMap map = pixels_in_play(in, out.output_of_input, cur.size());
+  out.neighbours = window_neighbours(cur.points, map, cfg.organised, cur.viewpoint);
+  if (cfg.outliers.enabled) {
+    Filtered f = remove_outliers_by(
+        cur, cfg.outliers,
+        window_mean_distances(cur.points, map, cfg.organised.half_window, cfg.outliers.k));
+    if (f.indices.size() != cur.size()) {
+      keep_neighbours(out.neighbours, f.indices);
+      apply(std::move(f), cur, out.output_of_input);
+      map = pixels_in_play(in, out.output_of_input, cur.size());
+    }
+  }
+  out.counts.after_outliers = cur.size();
+  timer.start("normals");
+  window_normals(cur, map, cfg.organised);
+  timer.stop();
+  out.counts.output = cur.size();
+  out.cloud = std::move(cur);
+}
 }  // namespace
 
 Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed,
@@ -135,6 +205,10 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
   out.output_of_input.resize(in.size());
   for (std::size_t i = 0; i < in.size(); ++i) out.output_of_input[i] = static_cast<std::int32_t>(i);
   out.plane_of_input.assign(in.size(), 0);
+  if (takes_organised_path(in, cfg)) {
+    preprocess_organised(in, cfg, seed, timer, out);
+    return out;
+  }
 
   timer.start("finite");
   Filtered f = remove_invalid(in);
@@ -170,6 +244,19 @@ Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint6
   out.counts.output = cur.size();
   out.cloud = std::move(cur);
   return out;
+}
+
+std::string path_summary(const Cloud& in, const PreprocessConfig& cfg) {
+  if (takes_organised_path(in, cfg)) {
+    const std::string side = std::to_string(2 * cfg.organised.half_window + 1);
+    return "organised (" + std::to_string(in.width) + " x " + std::to_string(in.height) +
+           " frame, " + side + " x " + side + " pixel windows)";
+  }
+  const char* why = !in.organised()             ? "unorganised cloud"
+                    : !cfg.organised.enabled    ? "preprocess.organised.enabled is false"
+                    : cfg.voxel.enabled         ? "the voxel grid is on"
+                                                : "radius normals";
+  return std::string("k-d tree (") + why + ")";
 }
 
 }  // namespace uwgrasp::cloud

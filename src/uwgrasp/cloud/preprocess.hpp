@@ -5,11 +5,13 @@
 // Outliers come after the plane: RANSAC is robust to them by design (4.1.4), and the statistics
 // then describe the points that matter, at a fraction of the cost of a kNN over the seafloor.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "uwgrasp/cloud/color.hpp"
 #include "uwgrasp/cloud/filters.hpp"
 #include "uwgrasp/cloud/normals.hpp"
+#include "uwgrasp/cloud/organised.hpp"
 #include "uwgrasp/cloud/outliers.hpp"
 #include "uwgrasp/cloud/plane_noise.hpp"
 #include "uwgrasp/cloud/ransac.hpp"
@@ -25,6 +27,7 @@ struct PreprocessConfig {
   VoxelConfig voxel;
   PlaneConfig plane;
   NormalConfig normals;
+  OrganisedConfig organised;
 };
 
 struct PreprocessCounts {
@@ -41,16 +44,26 @@ struct Preprocessed {
   PlaneResult plane;  // coefficients; inliers refer to the cloud the plane stage saw
   NoiseModel noise;   // the depth noise measured on the plane (found only with noise_sigmas > 0)
   PreprocessCounts counts;
-  // The kNN lists the normals were computed from (k = max(normals.k, share_k)), for later
-  // stages on the same cloud; empty in radius mode.
+  // The kNN lists the normals were computed from (k = max(normals.k, share_k)), or on the
+  // organised path the pixel-window lists, for later stages on the same cloud; empty in radius
+  // mode.
   Neighbours neighbours;
+  bool organised = false;  // which path ran (see preprocess below)
 };
 
 // Runs the chain; each stage's time is recorded in `timer` under its own name ("finite",
 // "range", "voxel", "plane", "outliers", "normals"). Throws Error when the input has no finite
 // point, when nothing survives a stage, or when a plane is required and none is found.
 // share_k > normals.k keeps that many neighbours per point in the result.
+// An organised frame (height > 1) with organised.enabled, no voxel grid and k-nearest normals
+// takes the organised path: the same stages, with each point's neighbours the continuous pixels
+// of its window (organised.hpp) instead of a k-d tree search; outliers.k, normals.k and share_k
+// then give way to the window.
 Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed,
                         StageTimer& timer, std::size_t share_k = 0);
+
+// One line on which path preprocess takes for this cloud and why, e.g. "organised (640 x 480
+// frame, 5 x 5 pixel windows)" or "k-d tree (unorganised cloud)", for the CLI to print.
+std::string path_summary(const Cloud& in, const PreprocessConfig& cfg);
 
 }  // namespace uwgrasp::cloud

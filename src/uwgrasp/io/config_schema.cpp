@@ -44,6 +44,12 @@ void visit_preprocess(Visitor& v, cloud::PreprocessConfig& c) {
     v.field("k", c.normals.k, 3, 1000);
     v.field("radius", c.normals.radius, 0.0, 10.0);
   });
+  v.section("organised", [&] {
+    v.field("enabled", c.organised.enabled);
+    v.field("half_window", c.organised.half_window, 1, 7);
+    v.field("normal_half_window", c.organised.normal_half_window, 1, 7);
+    v.field("depth_change", c.organised.depth_change, kTiny, 10.0);
+  });
 }
 
 void visit_segment(Visitor& v, segment::SegmentConfig& c) {

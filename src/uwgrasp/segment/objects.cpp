@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -80,12 +81,12 @@ Objects connected_objects(const Cloud& cloud, const cloud::Neighbours& nb, float
 
 float connection_gap(const cloud::Neighbours& nb, float spacing_mul, float lo, float hi) {
   std::vector<float> d;
-  for (std::size_t i = 0; i < nb.count.size(); i += 7)  // a sample is plenty for a median
+  for (std::size_t i = 0; i < nb.count.size(); i += 7) {  // a sample is plenty for a median
+    float nearest = std::numeric_limits<float>::infinity();  // window lists are not sorted
     for (const float d2 : nb.dists_of(i))
-      if (d2 > 0.0f) {
-        d.push_back(std::sqrt(d2));
-        break;
-      }
+      if (d2 > 0.0f) nearest = std::min(nearest, d2);
+    if (std::isfinite(nearest)) d.push_back(std::sqrt(nearest));
+  }
   if (d.empty()) return lo;
   std::nth_element(d.begin(), d.begin() + std::ptrdiff_t(d.size() / 2), d.end());
   return std::clamp(spacing_mul * d[d.size() / 2], lo, hi);

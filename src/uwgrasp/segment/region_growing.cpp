@@ -115,11 +115,15 @@ Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
   Segmentation out;
   if (cloud.empty()) return out;
   check_inputs(cloud, region, color);
-  if (all.count.size() != cloud.size() || (all.k < region.k && all.k < cloud.size()))
+  if (all.count.size() != cloud.size() ||
+      (!all.window && all.k < region.k && all.k < cloud.size()))
     throw Error("region growing: the shared neighbour lists do not fit this cloud");
   out.label.assign(cloud.size(), -1);
-  cloud::Neighbours cut;  // only when the shared rows are longer than k
-  const cloud::Neighbours& nb = all.k > region.k ? (cut = truncate(all, region.k)) : all;
+  // Only when the shared kNN rows are longer than k; an organised frame's window lists are used
+  // whole (the window is the neighbourhood).
+  cloud::Neighbours cut;
+  const cloud::Neighbours& nb =
+      !all.window && all.k > region.k ? (cut = truncate(all, region.k)) : all;
   const float rad = region.angle_deg * std::numbers::pi_v<float> / 180.0f;
   Grower g{cloud, nb, region, color, std::cos(rad), region.distance * region.distance,
            color.point_threshold * color.point_threshold, out.label, {}};

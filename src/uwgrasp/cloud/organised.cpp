@@ -1,0 +1,258 @@
+#include "uwgrasp/cloud/organised.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <string>
+
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::cloud {
+
+namespace {
+struct Offset {
+  int du, dv;
+  float steps;  // Chebyshev pixel distance
+};
+
+// The window's pixels but the centre, ring by ring (then row-major within a ring), so that each
+// list starts with the pixels next to its point.
+std::vector<Offset> ring_offsets(int h) {
+  std::vector<Offset> o;
+  for (int ring = 1; ring <= h; ++ring)
+    for (int dv = -ring; dv <= ring; ++dv)
+      for (int du = -ring; du <= ring; ++du)
+        if (std::max(std::abs(du), std::abs(dv)) == ring) o.push_back({du, dv, float(ring)});
+  return o;
+}
+
+// Each point's distance from the viewpoint, for the continuity test.
+struct Ranges {
+  std::vector<float> r;
+  Ranges(std::span<const Eigen::Vector3f> points, const Eigen::Vector3f& viewpoint)
+      : r(points.size()) {
+    for (std::size_t j = 0; j < points.size(); ++j) r[j] = (points[j] - viewpoint).norm();
+  }
+};
+
+// Point j, then the continuous in-play pixels of its window ring by ring, into idx (and their
+// squared distances into d2 unless null); returns how many.
+std::size_t window_list(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                        const OrganisedConfig& cfg, const Ranges& range, std::size_t j,
+                        std::uint32_t* idx, float* d2) {
+  const int h = int(cfg.half_window), W = int(map.width), H = int(map.height);
+  const int u = int(map.pixel[j] % map.width), v = int(map.pixel[j] / map.width);
+  const float rj = range.r[j];
+  std::size_t c = 0;
+  idx[c] = std::uint32_t(j);
+  if (d2) d2[c] = 0.0f;
+  ++c;
+  for (int ring = 1; ring <= h; ++ring)
+    for (int dv = -ring; dv <= ring; ++dv) {
+      const int vv = v + dv;
+      if (vv < 0 || vv >= H) continue;
+      const int step = (dv == -ring || dv == ring) ? 1 : 2 * ring;  // whole edge rows, else ends
+      for (int du = -ring; du <= ring; du += step) {
+        const int uu = u + du;
+        if (uu < 0 || uu >= W) continue;
+        const std::int32_t s = map.slot[std::size_t(vv) * map.width + std::size_t(uu)];
+        // Symmetric continuity: the allowance uses the mean of the two ranges.
+        if (s < 0) continue;
+        const float rs = range.r[std::size_t(s)];
+        if (std::abs(rs - rj) > cfg.depth_change * float(ring) * 0.5f * (rs + rj)) continue;
+        idx[c] = std::uint32_t(s);
+        if (d2) d2[c] = (points[std::size_t(s)] - points[j]).squaredNorm();
+        ++c;
+      }
+    }
+  return c;
+}
+
+void check_window(std::uint32_t h) {
+  if (h < 1 || h > 7)
+    throw Error("preprocess.organised.half_window must be in [1, 7], got " + std::to_string(h));
+}
+
+// The ten moments of a set of points (relative to an origin, for precision), summed so that
+// points can be added and taken away again: a window's covariance from running sums.
+struct Moments {
+  std::array<double, 10> s{};  // n, x, y, z, xx, xy, xz, yy, yz, zz
+  void add(const Eigen::Vector3d& p, double sign) {
+    const double v[10] = {1.0, p.x(), p.y(), p.z(), p.x() * p.x(), p.x() * p.y(),
+                          p.x() * p.z(), p.y() * p.y(), p.y() * p.z(), p.z() * p.z()};
+    for (int i = 0; i < 10; ++i) s[i] += sign * v[i];
+  }
+  void add(const Moments& m, double sign) {
+    for (int i = 0; i < 10; ++i) s[i] += sign * m.s[i];
+  }
+  // Covariance (eq. 4.4, divided by N).
+  Eigen::Matrix3d covariance() const {
+    const double n = s[0];
+    const Eigen::Vector3d mean(s[1] / n, s[2] / n, s[3] / n);
+    Eigen::Matrix3d c;
+    c << s[4] / n, s[5] / n, s[6] / n, s[5] / n, s[7] / n, s[8] / n, s[6] / n, s[8] / n, s[9] / n;
+    return c - mean * mean.transpose();
+  }
+};
+
+// Separable running sums over the rows [v0, v1) of the frame: column sums over the window's
+// rows roll down, and a sum over the window's columns slides along each row, so a pixel costs
+// the same whatever the window. Calls at(j, moments) for every point j whose window
+// it holds whole (full[j]: every window pixel in play and continuous).
+template <class At>
+void window_moments(const Cloud& cloud, const PixelMap& map, const std::vector<char>& full,
+                    std::size_t h, const Eigen::Vector3d& origin, std::size_t v0, std::size_t v1,
+                    At&& at) {
+  const std::size_t W = map.width, H = map.height;
+  std::vector<Moments> col(W);
+  const auto add_row = [&](std::size_t v, double sign) {
+    if (v >= H) return;  // also the rows above the frame (wrapped below zero)
+    for (std::size_t u = 0; u < W; ++u)
+      if (const std::int32_t j = map.slot[v * W + u]; j >= 0)
+        col[u].add(cloud.points[std::size_t(j)].cast<double>() - origin, sign);
+  };
+  for (std::size_t v = v0 - h; v != v0 + h; ++v) add_row(v, 1.0);
+  for (std::size_t v = v0; v < v1; ++v) {
+    add_row(v + h, 1.0);
+    Moments run;
+    for (std::size_t u = 0; u < std::min(W, 2 * h + 1); ++u) run.add(col[u], 1.0);
+    for (std::size_t u = h; u + h < W; ++u) {
+      if (u > h) run.add(col[u + h], 1.0), run.add(col[u - h - 1], -1.0);
+      const std::int32_t j = map.slot[v * W + u];
+      if (j >= 0 && full[std::size_t(j)]) at(std::size_t(j), run);
+    }
+    add_row(v - h, -1.0);
+  }
+}
+}  // namespace
+
+PixelMap pixel_map(std::uint32_t width, std::uint32_t height, std::vector<std::uint32_t> pixels) {
+  PixelMap m;
+  m.width = width, m.height = height;
+  m.slot.assign(std::size_t(width) * height, -1);
+  for (std::size_t j = 0; j < pixels.size(); ++j) {
+    if (pixels[j] >= m.slot.size())
+      throw Error("pixel_map: pixel " + std::to_string(pixels[j]) + " outside the frame");
+    m.slot[pixels[j]] = static_cast<std::int32_t>(j);
+  }
+  m.pixel = std::move(pixels);
+  return m;
+}
+
+Neighbours window_neighbours(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                             const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint) {
+  check_window(cfg.half_window);
+  const Ranges range(points, viewpoint);
+  Neighbours nb;
+  nb.k = std::size_t(2 * cfg.half_window + 1) * (2 * cfg.half_window + 1), nb.window = true;
+  nb.indices.resize(points.size() * nb.k), nb.sq_dists.resize(points.size() * nb.k);
+  nb.count.resize(points.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j != r.end(); ++j)
+      nb.count[j] = std::uint32_t(window_list(points, map, cfg, range, j, &nb.indices[j * nb.k],
+                                              &nb.sq_dists[j * nb.k]));
+  });
+  return nb;
+}
+
+std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points,
+                                         const PixelMap& map, std::uint32_t half_window,
+                                         std::uint32_t k) {
+  check_window(half_window);
+  const int h = int(half_window), W = int(map.width), H = int(map.height);
+  const std::vector<Offset> offsets = ring_offsets(h);
+  std::vector<float> mean(points.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const auto& r) {
+    std::vector<float> d2(offsets.size());
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      const int u = int(map.pixel[j] % map.width), v = int(map.pixel[j] / map.width);
+      std::size_t n = 0;
+      for (const Offset& o : offsets) {
+        const int uu = u + o.du, vv = v + o.dv;
+        if (uu < 0 || vv < 0 || uu >= W || vv >= H) continue;
+        const std::int32_t s = map.slot[std::size_t(vv) * map.width + std::size_t(uu)];
+        if (s >= 0) d2[n++] = (points[std::size_t(s)] - points[j]).squaredNorm();
+      }
+      if (n == 0) {
+        mean[j] = std::numeric_limits<float>::infinity();
+        continue;
+      }
+      const std::size_t m = std::min<std::size_t>(n, k);
+      std::nth_element(d2.begin(), d2.begin() + std::ptrdiff_t(m - 1),
+                       d2.begin() + std::ptrdiff_t(n));
+      double sum = 0.0;
+      for (std::size_t e = 0; e < m; ++e) sum += std::sqrt(d2[e]);
+      mean[j] = float(sum / double(m));
+    }
+  });
+  return mean;
+}
+
+void keep_neighbours(Neighbours& nb, std::span<const std::uint32_t> kept) {
+  std::vector<std::int32_t> pos(nb.count.size(), -1);
+  for (std::size_t j = 0; j < kept.size(); ++j) pos[kept[j]] = std::int32_t(j);
+  // In place, in ascending order: row j is written from row kept[j] >= j, which no earlier row
+  // overwrote. Sequential, but no second copy of the lists.
+  for (std::size_t j = 0; j < kept.size(); ++j) {
+    const std::size_t from = kept[j];
+    std::uint32_t c = 0;
+    for (std::uint32_t e = 0; e < nb.count[from]; ++e) {
+      const std::int32_t p = pos[nb.indices[from * nb.k + e]];
+      if (p < 0) continue;
+      nb.indices[j * nb.k + c] = std::uint32_t(p);
+      nb.sq_dists[j * nb.k + c++] = nb.sq_dists[from * nb.k + e];
+    }
+    nb.count[j] = c;
+  }
+  nb.indices.resize(kept.size() * nb.k), nb.sq_dists.resize(kept.size() * nb.k);
+  nb.count.resize(kept.size());
+}
+
+void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg) {
+  check_window(cfg.normal_half_window);
+  if (map.pixel.size() != cloud.size())
+    throw Error("normals: the pixel map does not fit this cloud");
+  cloud.normals.resize(cloud.size());
+  cloud.curvature.resize(cloud.size());
+  if (cloud.empty()) return;
+  const auto store = [&](std::size_t j, const PointNormal& pn) {
+    cloud.normals[j] = pn.normal;
+    cloud.curvature[j] = pn.curvature;
+  };
+  // Each point's continuous window pixels; a point whose window is cut (by the frame's edge, a
+  // gap or a depth step) sums them, the others are marked for the running sums.
+  OrganisedConfig own = cfg;
+  own.half_window = cfg.normal_half_window;
+  const std::size_t whole = std::size_t(2 * own.half_window + 1) * (2 * own.half_window + 1);
+  const Ranges range(cloud.points, cloud.viewpoint);
+  std::vector<char> full(cloud.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1024), [&](const auto& r) {
+    std::vector<std::uint32_t> list(whole);
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      const std::size_t n = window_list(cloud.points, map, own, range, j, list.data(), nullptr);
+      if (n == whole)
+        full[j] = 1;
+      else
+        store(j, normal_from(cloud.points, {list.data(), n}, cloud.points[j], cloud.viewpoint));
+    }
+  });
+  // The others from running sums, in fixed blocks of rows (the sums, and so the output, do not
+  // depend on the thread count).
+  const Eigen::Vector3d origin = cloud.points[cloud.size() / 2].cast<double>();
+  constexpr std::size_t kRows = 16;
+  tbb::parallel_for(std::size_t{0}, (map.height + kRows - 1) / kRows, [&](std::size_t b) {
+    window_moments(cloud, map, full, own.half_window, origin, b * kRows,
+                   std::min<std::size_t>(map.height, (b + 1) * kRows),
+                   [&](std::size_t j, const Moments& m) {
+                     store(j, normal_from_covariance(m.covariance(), cloud.points[j],
+                                                     cloud.viewpoint));
+                   });
+  });
+}
+
+}  // namespace uwgrasp::cloud

@@ -1,0 +1,64 @@
+#pragma once
+// Neighbourhoods on an organised frame (one point per pixel): the neighbours of a pixel are the
+// pixels around it, so the k-d tree searches that dominate the unorganised chain are not needed.
+// A window pixel is a neighbour when it is still in play and its range is continuous with the
+// centre's: |r_q - r_p| <= depth_change * r_p * d, d the pixels between them (Chebyshev). The
+// allowance grows with range, as a depth sensor's noise and pixel footprint do, and with d, so a
+// slanted surface stays one neighbourhood while a step to the background does not.
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/cloud/normals.hpp"
+#include "uwgrasp/core/cloud.hpp"
+
+namespace uwgrasp::cloud {
+
+struct OrganisedConfig {
+  bool enabled = true;       // take the organised path for frames (height > 1) without a voxel grid
+  std::uint32_t half_window = 2;  // pixels on each side of the centre: 2 is a 5 x 5 window
+  // The normals' window: 7 x 7. On a frame with 1 mm depth noise at 1 m it halves the normals'
+  // median error of the 5 x 5 window (3.3 against 6.5 degrees) at the same cost per pixel.
+  std::uint32_t normal_half_window = 3;
+  float depth_change = 0.02f;  // range continuity per pixel step, as a share of the range
+};
+
+// Which pixels hold the points still in play: pixel[j] is the pixel of point j (ascending), and
+// slot[p] the point at pixel p or -1.
+struct PixelMap {
+  std::uint32_t width = 0, height = 0;
+  std::vector<std::int32_t> slot;
+  std::vector<std::uint32_t> pixel;
+};
+
+// The map of `pixels` (ascending pixel indices of a width x height frame).
+PixelMap pixel_map(std::uint32_t width, std::uint32_t height, std::vector<std::uint32_t> pixels);
+
+// For every point of the map (points[j] at pixel[j]): itself first, then the continuous pixels
+// of its window ring by ring (nearest pixels first, not nearest in space), as indices into
+// `points`. Rows hold up to (2 half_window + 1)^2 entries; the lists are marked `window` (see kdtree.hpp).
+// `viewpoint` is the sensor origin the ranges are measured from.
+Neighbours window_neighbours(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                             const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint);
+
+// The statistic of statistical outlier removal (4.1.3) over the window: each point's mean
+// distance to its k nearest points among every pixel of its window still in play (continuous or
+// not, as a k-d tree search would find them), or infinity when the window holds none.
+std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points,
+                                         const PixelMap& map, std::uint32_t half_window,
+                                         std::uint32_t k);
+
+// Restricts the lists to the points `kept` (ascending indices into the rows), in place,
+// renumbered to positions in `kept`: what window_neighbours would give on the smaller map.
+void keep_neighbours(Neighbours& nb, std::span<const std::uint32_t> kept);
+
+// Normals and curvature (4.2.1, eq. 4.4-4.7) over each point's window of normal_half_window:
+// its continuous in-play pixels, as for window_neighbours. A point whose whole window qualifies
+// takes the covariance from separable running sums over the frame (the cost does not depend on
+// the window size); the others sum their pixels. Fills cloud.normals and cloud.curvature;
+// map.pixel[j] is the pixel of cloud.points[j].
+void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg);
+
+}  // namespace uwgrasp::cloud

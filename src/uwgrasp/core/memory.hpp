@@ -1,0 +1,15 @@
+#pragma once
+// Process-wide memory policy for frame streams.
+
+namespace uwgrasp {
+
+// Keeps the memory that large buffers (a frame's clouds, neighbour lists, images) free in the
+// heap for the next frame, instead of returning it to the operating system and faulting it in
+// again page by page: glibc hands buffers above its mmap threshold back on free. A fresh page
+// costs 0.1-12 us depending on the machine (12 us on the 2-core VM of docs/benchmarks.md, where
+// a 640x480 frame's buffers then cost more than its arithmetic). Call once at start-up in a
+// program that processes more than one frame; memory use then stays at its peak. A no-op
+// where the C library is not glibc.
+void keep_freed_memory();
+
+}  // namespace uwgrasp

@@ -1,0 +1,245 @@
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "shapes.hpp"
+#include "uwgrasp/cloud/organised.hpp"
+#include "uwgrasp/cloud/preprocess.hpp"
+#include "uwgrasp/core/rng.hpp"
+#include "uwgrasp/io/pcd.hpp"
+
+namespace uwgrasp::cloud {
+
+namespace {
+constexpr std::uint32_t kW = 64, kH = 48;
+// A 64 x 48 crop of a camera with a 500-pixel focal length, at the origin.
+constexpr float kF = 500.0f;
+
+// A frame seen by the pinhole camera: depth(u, v) gives each pixel's z (NaN: no return).
+template <class Depth>
+Cloud frame(Depth depth) {
+  Cloud c;
+  c.width = kW, c.height = kH;
+  for (std::uint32_t v = 0; v < kH; ++v)
+    for (std::uint32_t u = 0; u < kW; ++u) {
+      const float z = depth(float(u), float(v));
+      c.points.emplace_back((float(u) - kW / 2.0f) * z / kF, (float(v) - kH / 2.0f) * z / kF, z);
+    }
+  return c;
+}
+
+// A tilted plane (normal (0, -0.6, -0.8) towards the camera) with a box 0.2 m nearer in front of
+// its right third, and an invalid pixel.
+Cloud step_frame() {
+  return frame([](float u, float v) {
+    if (u == 5 && v == 7) return std::nanf("");
+    const float plane = 0.8f / (0.8f + 0.6f * (v - kH / 2.0f) / kF);  // 0.6 y + 0.8 z = 0.64
+    return u >= 40 ? plane - 0.2f : plane;
+  });
+}
+
+PixelMap full_map(const Cloud& c, std::vector<std::uint32_t>* pixels = nullptr) {
+  std::vector<std::uint32_t> p;
+  for (std::uint32_t i = 0; i < c.size(); ++i)
+    if (is_finite(c.points[i])) p.push_back(i);
+  if (pixels) *pixels = p;
+  return pixel_map(c.width, c.height, std::move(p));
+}
+}  // namespace
+
+TEST(Organised, WindowListsAreSymmetricAndStopAtDepthSteps) {
+  const Cloud c = step_frame();
+  std::vector<std::uint32_t> pixels;
+  const PixelMap map = full_map(c, &pixels);
+  const Cloud pts = select(c, pixels);
+  const Neighbours nb = window_neighbours(pts.points, map, {}, pts.viewpoint);
+  ASSERT_TRUE(nb.window);
+  ASSERT_EQ(nb.k, 25u);
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (std::size_t j = 0; j < pts.size(); ++j) {
+    const auto row = nb.of(j);
+    ASSERT_GE(row.size(), 1u);
+    EXPECT_EQ(row[0], j);  // the point itself first
+    const std::uint32_t u = map.pixel[j] % kW;
+    for (const auto q : row) {
+      edges.insert({std::uint32_t(j), q});
+      EXPECT_EQ(u >= 40, map.pixel[q] % kW >= 40) << "a neighbour across the 0.5 m step";
+      const int du = int(map.pixel[q] % kW) - int(u), dv = int(map.pixel[q] / kW) - int(map.pixel[j] / kW);
+      EXPECT_LE(std::max(std::abs(du), std::abs(dv)), 2);
+    }
+    // An interior pixel away from the step and the hole has its whole window.
+    const std::uint32_t v = map.pixel[j] / kW;
+    if (u >= 2 && u + 2 < 40 && v >= 2 && v + 2 < kH && !(u >= 3 && u <= 7 && v >= 5 && v <= 9)) {
+      EXPECT_EQ(row.size(), 25u) << "pixel " << u << ", " << v;
+    }
+  }
+  for (const auto& [a, b] : edges) EXPECT_TRUE(edges.count({b, a})) << a << " -> " << b;
+}
+
+TEST(Organised, NormalsFromRunningSumsEqualTheListsAndTheAnalyticPlane) {
+  const Cloud c = step_frame();
+  std::vector<std::uint32_t> pixels;
+  const PixelMap map = full_map(c, &pixels);
+  Cloud pts = select(c, pixels);
+  OrganisedConfig cfg;
+  cfg.half_window = cfg.normal_half_window;  // the normals' window as lists, for brute force
+  const Neighbours nb = window_neighbours(pts.points, map, cfg, pts.viewpoint);
+  window_normals(pts, map, {});
+  std::size_t full = 0;
+  for (std::size_t j = 0; j < pts.size(); ++j) {
+    // Brute force: the same pixels summed point by point (eq. 4.4-4.7).
+    const PointNormal ref = normal_from(pts.points, nb.of(j), pts.points[j], pts.viewpoint);
+    EXPECT_LT(test::angle_deg(pts.normals[j], ref.normal), 1e-2) << j;
+    EXPECT_NEAR(pts.curvature[j], ref.curvature, 1e-5f);
+    full += nb.count[j] == nb.k;
+    if (map.pixel[j] % kW < 40) {  // the plane, facing the camera
+      EXPECT_LT(test::angle_deg(pts.normals[j], {0, -0.6f, -0.8f}), 0.05) << j;
+    }
+  }
+  EXPECT_GT(full, pts.size() / 2);  // the running sums were exercised
+}
+
+TEST(Organised, NormalsOnASphereAndTheSameWithOneThread) {
+  const Eigen::Vector3f centre(0, 0, 0.6f);
+  const Cloud c = frame([&](float u, float v) {  // a 5 cm ball, NaN off it
+    const Eigen::Vector3f d = Eigen::Vector3f((u - kW / 2.0f) / kF, (v - kH / 2.0f) / kF, 1).normalized();
+    const float b = d.dot(centre), disc = b * b - (centre.squaredNorm() - 0.0025f);
+    return disc < 0 ? std::nanf("") : (b - std::sqrt(disc)) * d.z();
+  });
+  std::vector<std::uint32_t> pixels;
+  const PixelMap map = full_map(c, &pixels);
+  ASSERT_GT(pixels.size(), 500u);
+  Cloud two = select(c, pixels), one = two;
+  window_normals(two, map, {});
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    window_normals(one, map, {});
+  }
+  for (std::size_t j = 0; j < two.size(); ++j) {
+    EXPECT_EQ(one.normals[j], two.normals[j]);  // bit for bit
+    const Eigen::Vector3f radial = (two.points[j] - centre).normalized();
+    // Away from the rim, where a window on a ball seen edge-on is cut and skewed.
+    if (radial.dot(-two.points[j].normalized()) > 0.5f) {
+      EXPECT_LT(test::angle_deg(two.normals[j], radial), 3.0) << j;
+    }
+  }
+}
+
+TEST(Organised, KeepNeighboursEqualsTheListsOfTheSmallerMap) {
+  const Cloud c = step_frame();
+  std::vector<std::uint32_t> pixels;
+  const PixelMap map = full_map(c, &pixels);
+  const Cloud pts = select(c, pixels);
+  Neighbours nb = window_neighbours(pts.points, map, {}, pts.viewpoint);
+  std::vector<std::uint32_t> kept, kept_pixels;
+  for (std::uint32_t j = 0; j < pts.size(); ++j)
+    if ((j * 7919u) % 5u != 0u) kept.push_back(j), kept_pixels.push_back(map.pixel[j]);
+  keep_neighbours(nb, kept);
+  const Cloud small = select(pts, kept);
+  const Neighbours ref =
+      window_neighbours(small.points, pixel_map(kW, kH, kept_pixels), {}, small.viewpoint);
+  ASSERT_EQ(nb.count, ref.count);
+  for (std::size_t j = 0; j < kept.size(); ++j) {
+    const auto a = nb.of(j), b = ref.of(j);
+    EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin())) << j;
+  }
+}
+
+TEST(Organised, MeanDistancesAreTheWindowsKNearestByBruteForce) {
+  Cloud c = test::plane_grid(30, 0.3f, 1.0f, 7, 0.004f);  // 30 x 30 noisy grid as a frame
+  c.width = c.height = 30;
+  c.points[100] = Eigen::Vector3f(0.0f, 0.0f, 1.5f);  // a flying pixel
+  std::vector<std::uint32_t> pixels;
+  const PixelMap map = full_map(c, &pixels);
+  const std::vector<float> mean = window_mean_distances(c.points, map, 2, 10);
+  for (std::size_t j = 0; j < c.size(); ++j) {
+    std::vector<float> d;
+    const int u = int(j % 30), v = int(j / 30);
+    for (int dv = -2; dv <= 2; ++dv)
+      for (int du = -2; du <= 2; ++du)
+        if ((du || dv) && u + du >= 0 && u + du < 30 && v + dv >= 0 && v + dv < 30)
+          d.push_back((c.points[std::size_t((v + dv) * 30 + u + du)] - c.points[j]).norm());
+    std::sort(d.begin(), d.end());
+    double sum = 0;
+    const std::size_t k = std::min<std::size_t>(10, d.size());  // a corner has 8
+    for (std::size_t e = 0; e < k; ++e) sum += d[e];
+    EXPECT_NEAR(mean[j], sum / double(k), 1e-5) << j;
+  }
+  EXPECT_GT(mean[100], 20 * mean[500]);
+}
+
+TEST(Organised, PreprocessTakesTheOrganisedPathOnlyWhereItCan) {
+  const Cloud c = step_frame();
+  PreprocessConfig cfg;
+  cfg.plane.enabled = false;
+  StageTimer t;
+  const Preprocessed p = preprocess(c, cfg, 1, t);
+  EXPECT_TRUE(p.organised);
+  EXPECT_TRUE(p.neighbours.window);
+  EXPECT_EQ(path_summary(c, cfg), "organised (64 x 48 frame, 5 x 5 pixel windows)");
+  EXPECT_EQ(p.counts.finite, c.size() - 1);
+  for (std::size_t i = 0; i < c.size(); ++i)  // the map still points at the same points
+    if (p.output_of_input[i] >= 0) {
+      EXPECT_EQ(p.cloud.points[std::size_t(p.output_of_input[i])], c.points[i]);
+    }
+  cfg.voxel.enabled = true;
+  EXPECT_FALSE(preprocess(c, cfg, 1, t).organised);
+  EXPECT_EQ(path_summary(c, cfg), "k-d tree (the voxel grid is on)");
+  cfg.voxel.enabled = false;
+  Cloud flat = c;
+  make_unorganised(flat);
+  EXPECT_FALSE(preprocess(flat, cfg, 1, t).organised);
+}
+
+// On a frame whose depth noise grows with range as a stereo camera's does (1 mm at 1 m), the
+// 7 x 7 window's normals are nearer the true normal than the k-d tree path's 20 nearest.
+TEST(Organised, NoisyPlaneNormalsAreNearerTheTruthThanTheKdTreePaths) {
+  Cloud c;
+  c.width = 320, c.height = 240;
+  Rng rng(3);
+  const Eigen::Vector3f n(0, -0.6f, -0.8f);  // 0.6 y + 0.8 z = 1
+  for (std::uint32_t v = 0; v < c.height; ++v)
+    for (std::uint32_t u = 0; u < c.width; ++u) {
+      const Eigen::Vector3f d = Eigen::Vector3f((u - 160.0f) / 262.0f, (v - 120.0f) / 262.0f, 1).normalized();
+      const float t = 1.0f / (0.6f * d.y() + 0.8f * d.z());
+      c.points.push_back(d * (t + 0.001f * t * t * float(rng.normal())));
+    }
+  PreprocessConfig cfg;
+  cfg.plane.enabled = false;
+  StageTimer timer;
+  const auto median_error = [&](const Preprocessed& p) {
+    std::vector<double> e;
+    for (const auto& m : p.cloud.normals) e.push_back(test::angle_deg(m, n));
+    std::nth_element(e.begin(), e.begin() + std::ptrdiff_t(e.size() / 2), e.end());
+    return e[e.size() / 2];
+  };
+  const double org = median_error(preprocess(c, cfg, 1, timer));
+  cfg.organised.enabled = false;
+  const double kd = median_error(preprocess(c, cfg, 1, timer));
+  EXPECT_LT(org, 5.0);
+  EXPECT_LT(org, 0.8 * kd) << "organised " << org << " deg, k-d tree " << kd << " deg";
+}
+
+// On a real frame the organised path keeps nearly the points the k-d tree path keeps.
+TEST(Organised, RealFrameKeepsThePointsTheKdTreePathKeeps) {
+  UWGRASP_DATA_OR_SKIP(path, "clouds/mOSD_learn33.pcd");
+  const Cloud in = io::load_cloud(path);
+  PreprocessConfig cfg;
+  StageTimer t;
+  const Preprocessed org = preprocess(in, cfg, 1, t);
+  cfg.organised.enabled = false;
+  const Preprocessed kd = preprocess(in, cfg, 1, t);
+  ASSERT_TRUE(org.organised);
+  ASSERT_FALSE(kd.organised);
+  std::size_t both = 0;
+  for (std::size_t i = 0; i < in.size(); ++i)
+    both += org.output_of_input[i] >= 0 && kd.output_of_input[i] >= 0;
+  EXPECT_GE(double(both), 0.98 * double(kd.cloud.size()));
+  EXPECT_NEAR(double(org.cloud.size()), double(kd.cloud.size()), 0.02 * double(kd.cloud.size()));
+  for (const auto& m : org.cloud.normals) ASSERT_NEAR(m.norm(), 1.0f, 1e-4f);
+}
+
+}  // namespace uwgrasp::cloud
