@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 
 #include <Eigen/Core>
+#include <array>
 #include <span>
 #include <vector>
 
@@ -68,5 +69,13 @@ void trace(const World& world, const SnowScene& snow, const Eigen::Vector3f& ori
 // Albedo texture factor in [1 - amp, 1 + amp] at a world point with surface normal n (hashed
 // value noise).
 float texture_factor(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float amp);
+
+// Triangle `prim` of geometry `geom`, in W (double precision).
+inline std::array<Eigen::Vector3d, 3> triangle(const World::Impl& w, unsigned geom, unsigned prim) {
+  const Mesh& m = w.meshes[geom];
+  const auto& t = m.triangles[prim];
+  return {m.vertices[t[0]].cast<double>(), m.vertices[t[1]].cast<double>(),
+          m.vertices[t[2]].cast<double>()};
+}
 
 }  // namespace uwgrasp::sim
