@@ -15,20 +15,25 @@
 namespace uwgrasp::cloud {
 
 namespace {
-struct Offset {
-  int du, dv;
-  float steps;  // Chebyshev pixel distance
-};
-
-// The window's pixels but the centre, ring by ring (then row-major within a ring), so that each
-// list starts with the pixels next to its point.
-std::vector<Offset> ring_offsets(int h) {
-  std::vector<Offset> o;
+// Calls f(s, ring) for every in-play pixel s of point j's window but its own, ring by ring
+// (Chebyshev distance 1, 2, ..., row-major within a ring), so lists start with the pixels next
+// to the point.
+template <class F>
+void for_each_window_pixel(const PixelMap& map, std::size_t j, int h, F&& f) {
+  const int W = int(map.width), H = int(map.height);
+  const int u = int(map.pixel[j] % map.width), v = int(map.pixel[j] / map.width);
   for (int ring = 1; ring <= h; ++ring)
-    for (int dv = -ring; dv <= ring; ++dv)
-      for (int du = -ring; du <= ring; ++du)
-        if (std::max(std::abs(du), std::abs(dv)) == ring) o.push_back({du, dv, float(ring)});
-  return o;
+    for (int dv = -ring; dv <= ring; ++dv) {
+      const int vv = v + dv;
+      if (vv < 0 || vv >= H) continue;
+      const int step = (dv == -ring || dv == ring) ? 1 : 2 * ring;  // whole edge rows, else ends
+      for (int du = -ring; du <= ring; du += step) {
+        const int uu = u + du;
+        if (uu < 0 || uu >= W) continue;
+        const std::int32_t s = map.slot[std::size_t(vv) * map.width + std::size_t(uu)];
+        if (s >= 0) f(std::size_t(s), ring);
+      }
+    }
 }
 
 // Each point's distance from the viewpoint, for the continuity test.
@@ -45,31 +50,19 @@ struct Ranges {
 std::size_t window_list(std::span<const Eigen::Vector3f> points, const PixelMap& map,
                         const OrganisedConfig& cfg, const Ranges& range, std::size_t j,
                         std::uint32_t* idx, float* d2) {
-  const int h = int(cfg.half_window), W = int(map.width), H = int(map.height);
-  const int u = int(map.pixel[j] % map.width), v = int(map.pixel[j] / map.width);
   const float rj = range.r[j];
   std::size_t c = 0;
   idx[c] = std::uint32_t(j);
   if (d2) d2[c] = 0.0f;
   ++c;
-  for (int ring = 1; ring <= h; ++ring)
-    for (int dv = -ring; dv <= ring; ++dv) {
-      const int vv = v + dv;
-      if (vv < 0 || vv >= H) continue;
-      const int step = (dv == -ring || dv == ring) ? 1 : 2 * ring;  // whole edge rows, else ends
-      for (int du = -ring; du <= ring; du += step) {
-        const int uu = u + du;
-        if (uu < 0 || uu >= W) continue;
-        const std::int32_t s = map.slot[std::size_t(vv) * map.width + std::size_t(uu)];
-        // Symmetric continuity: the allowance uses the mean of the two ranges.
-        if (s < 0) continue;
-        const float rs = range.r[std::size_t(s)];
-        if (std::abs(rs - rj) > cfg.depth_change * float(ring) * 0.5f * (rs + rj)) continue;
-        idx[c] = std::uint32_t(s);
-        if (d2) d2[c] = (points[std::size_t(s)] - points[j]).squaredNorm();
-        ++c;
-      }
-    }
+  for_each_window_pixel(map, j, int(cfg.half_window), [&](std::size_t s, int ring) {
+    // Symmetric continuity: the allowance uses the mean of the two ranges.
+    const float rs = range.r[s];
+    if (std::abs(rs - rj) > cfg.depth_change * float(ring) * 0.5f * (rs + rj)) return;
+    idx[c] = std::uint32_t(s);
+    if (d2) d2[c] = (points[s] - points[j]).squaredNorm();
+    ++c;
+  });
   return c;
 }
 
@@ -164,20 +157,15 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
                                          const PixelMap& map, std::uint32_t half_window,
                                          std::uint32_t k) {
   check_window(half_window);
-  const int h = int(half_window), W = int(map.width), H = int(map.height);
-  const std::vector<Offset> offsets = ring_offsets(h);
+  const std::size_t side = 2 * std::size_t(half_window) + 1;
   std::vector<float> mean(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const auto& r) {
-    std::vector<float> d2(offsets.size());
+    std::vector<float> d2(side * side);
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
-      const int u = int(map.pixel[j] % map.width), v = int(map.pixel[j] / map.width);
       std::size_t n = 0;
-      for (const Offset& o : offsets) {
-        const int uu = u + o.du, vv = v + o.dv;
-        if (uu < 0 || vv < 0 || uu >= W || vv >= H) continue;
-        const std::int32_t s = map.slot[std::size_t(vv) * map.width + std::size_t(uu)];
-        if (s >= 0) d2[n++] = (points[std::size_t(s)] - points[j]).squaredNorm();
-      }
+      for_each_window_pixel(map, j, int(half_window), [&](std::size_t s, int) {
+        d2[n++] = (points[s] - points[j]).squaredNorm();
+      });
       if (n == 0) {
         mean[j] = std::numeric_limits<float>::infinity();
         continue;
