@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "pcl_organised.hpp"
 #include "scene.hpp"
 #include "uwgrasp/cloud/filters.hpp"
 #include "uwgrasp/cloud/normals.hpp"
@@ -171,6 +172,20 @@ void compare_region_growing(const char* name, const Cloud& raw) {
   row(name, "region growing k=30", c.size(), tp, tu, std::to_string(np) + " / " + std::to_string(nu) + " segments");
 }
 
+// An organised frame: PCL's organised chain (pcl_organised.hpp) against uwgrasp's organised path
+// from the raw frame to segments.
+void organised_chain(const char* name, const Cloud& frame) {
+  const auto pcl_frame = bench::to_pcl_organised(frame);
+  std::size_t np = 0, nu = 0;
+  const double tp = median_ms([&] {
+    const auto labels = bench::pcl_organised_chain(pcl_frame);
+    np = labels.empty() ? 0 : std::size_t(*std::max_element(labels.begin(), labels.end()) + 1);
+  });
+  const double tu = median_ms([&] { nu = segment::segment_scene(frame, {}, {}, 1).info.size(); });
+  row(name, "organised frame -> segments", frame.size(), tp, tu,
+      std::to_string(np) + " clusters / " + std::to_string(nu) + " segments");
+}
+
 void whole_chain(const char* name, const Cloud& raw) {
   segment::Scene s;
   const double tu = median_ms([&] { s = segment::segment_scene(raw, {}, {}, 1); });
@@ -211,6 +226,8 @@ int main(int argc, char** argv) {
     compare_stages("mug stereo", mug_cloud);
     compare_region_growing("mug stereo", mug_cloud);
   }
+  organised_chain("seafloor 640 x 480 frame", bench::seafloor_scene(640, 480));
+  if (!mug_cloud.empty()) organised_chain("mug stereo", mug_cloud);
   whole_chain("seafloor 400k", scene);
   if (!mug_cloud.empty()) whole_chain("mug stereo", mug_cloud);
   return 0;

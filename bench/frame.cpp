@@ -3,10 +3,6 @@
 // frames; and PCL's organised chain (IntegralImageNormalEstimation +
 // OrganizedMultiPlaneSegmentation + OrganizedConnectedComponentSegmentation) on the same frames.
 //   frame [--repeats N]   (default 20)
-#include <pcl/features/integral_image_normal.h>
-#include <pcl/segmentation/euclidean_cluster_comparator.h>
-#include <pcl/segmentation/organized_connected_component_segmentation.h>
-#include <pcl/segmentation/organized_multi_plane_segmentation.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -20,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "pcl_organised.hpp"
 #include "scene.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/core/memory.hpp"
@@ -28,7 +25,6 @@
 #include "uwgrasp/io/pcd.hpp"
 
 using namespace uwgrasp;
-using PclPoint = pcl::PointXYZRGBA;
 
 namespace {
 double median(std::vector<double> v) {
@@ -40,58 +36,6 @@ double time_ms(const std::function<void()>& f) {
   const auto t0 = std::chrono::steady_clock::now();
   f();
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-pcl::PointCloud<PclPoint>::Ptr to_pcl(const Cloud& c) {
-  pcl::PointCloud<PclPoint>::Ptr out(new pcl::PointCloud<PclPoint>);
-  out->width = c.width, out->height = c.height, out->is_dense = false;
-  out->points.resize(c.size());
-  for (std::size_t i = 0; i < c.size(); ++i) {
-    PclPoint& p = out->points[i];
-    p.x = c.points[i].x(), p.y = c.points[i].y(), p.z = c.points[i].z();
-    if (c.has_colors()) p.r = c.colors[i].r, p.g = c.colors[i].g, p.b = c.colors[i].b;
-  }
-  return out;
-}
-
-// PCL's organised chain as its tutorials run it: integral-image normals, planes of at least
-// 10,000 points, then Euclidean clusters of what is not a plane. Returns the clusters found.
-std::size_t pcl_chain(const pcl::PointCloud<PclPoint>::Ptr& cloud) {
-  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
-  pcl::IntegralImageNormalEstimation<PclPoint, pcl::Normal> ne;
-  ne.setNormalEstimationMethod(ne.COVARIANCE_MATRIX);
-  ne.setMaxDepthChangeFactor(0.02f);
-  ne.setNormalSmoothingSize(10.0f);
-  ne.setInputCloud(cloud);
-  ne.compute(*normals);
-  pcl::OrganizedMultiPlaneSegmentation<PclPoint, pcl::Normal, pcl::Label> mps;
-  mps.setMinInliers(10000);
-  mps.setAngularThreshold(0.017453 * 2.0);
-  mps.setDistanceThreshold(0.02);
-  mps.setInputNormals(normals);
-  mps.setInputCloud(cloud);
-  std::vector<pcl::PlanarRegion<PclPoint>, Eigen::aligned_allocator<pcl::PlanarRegion<PclPoint>>> regions;
-  std::vector<pcl::ModelCoefficients> coefficients;
-  std::vector<pcl::PointIndices> inliers, label_indices, boundaries;
-  pcl::PointCloud<pcl::Label>::Ptr labels(new pcl::PointCloud<pcl::Label>);
-  mps.segmentAndRefine(regions, coefficients, inliers, labels, label_indices, boundaries);
-  auto planes = std::make_shared<std::set<std::uint32_t>>();
-  for (std::size_t i = 0; i < label_indices.size(); ++i)
-    if (label_indices[i].indices.size() > 10000) planes->insert(std::uint32_t(i));
-  pcl::EuclideanClusterComparator<PclPoint, pcl::Label>::Ptr comp(
-      new pcl::EuclideanClusterComparator<PclPoint, pcl::Label>);
-  comp->setInputCloud(cloud);
-  comp->setLabels(labels);
-  comp->setExcludeLabels(planes);
-  comp->setDistanceThreshold(0.01f, false);
-  pcl::PointCloud<pcl::Label> clusters;
-  std::vector<pcl::PointIndices> cluster_indices;
-  pcl::OrganizedConnectedComponentSegmentation<PclPoint, pcl::Label> seg(comp);
-  seg.setInputCloud(cloud);
-  seg.segment(clusters, cluster_indices);
-  std::size_t n = 0;
-  for (const auto& c : cluster_indices) n += c.indices.size() >= 50;
-  return n;
 }
 
 struct Row {
@@ -132,9 +76,9 @@ int main(int argc, char** argv) {
               "PCL organised chain ms | PCL / uwgrasp (segments) |\n|---|---|---|---|---|---|---|\n");
   std::vector<std::pair<std::string, Row>> stage_rows;
   for (const auto& [name, frame] : frames) {
-    const auto pcl_cloud = to_pcl(frame);
+    const auto pcl_cloud = bench::to_pcl_organised(frame);
     std::vector<double> pcl_ms;
-    for (int r = 0; r < repeats; ++r) pcl_ms.push_back(time_ms([&] { pcl_chain(pcl_cloud); }));
+    for (int r = 0; r < repeats; ++r) pcl_ms.push_back(time_ms([&] { bench::pcl_organised_chain(pcl_cloud); }));
     const double pcl = median(pcl_ms);
     for (const int threads : {1, 2}) {
       const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));

@@ -1,6 +1,7 @@
 // bench/segeval: per-object best-segment IoU against the mOSD ground-truth labels
-// (label >= 20: one id per object), for uwgrasp and for PCL's RegionGrowing run with the same
-// parameters on the same preprocessed cloud (same normals, plane removed).
+// (label >= 20: one id per object), for uwgrasp's organised and k-d tree paths, for PCL's
+// RegionGrowing run with the same parameters on the same preprocessed cloud (same normals, plane
+// removed), and for PCL's organised chain on the raw frame.
 //   segeval [--set section.key=value]...
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/region_growing.h>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "pcl_organised.hpp"
 #include "uwgrasp/io/config.hpp"
 #include "uwgrasp/io/pcd.hpp"
 #include "uwgrasp/segment/pipeline.hpp"
@@ -69,6 +71,18 @@ std::vector<std::int32_t> pcl_labels(const segment::Scene& s, const segment::Reg
     if (s.pre.output_of_input[i] >= 0) out[i] = lab[std::size_t(s.pre.output_of_input[i])];
   return out;
 }
+
+// Mean best IoU and the number of objects at >= 0.8, summed over scenes.
+struct Tally {
+  double sum = 0;
+  std::size_t good = 0;
+  void add(const std::map<std::uint32_t, double>& ious, double& mean, std::size_t& k) {
+    mean = 0, k = 0;
+    for (auto [g, v] : ious) mean += v, k += v >= 0.8;
+    sum += mean, good += k;
+    mean /= double(ious.size());
+  }
+};
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -76,11 +90,16 @@ int main(int argc, char** argv) {
   for (int i = 1; i + 1 < argc; ++i)
     if (!std::strcmp(argv[i], "--set")) sets.push_back(argv[++i]);
   const io::Config cfg = io::load_config("", sets);
+  io::Config kd_cfg = cfg;
+  kd_cfg.preprocess.organised.enabled = false;
   const std::string dir = std::string(UWGRASP_DATA_DIR) + "/clouds/";
-  std::printf("| scene | objects | uwgrasp mean IoU | uwgrasp IoU >= 0.8 | PCL mean IoU | PCL IoU >= 0.8 |\n");
+  std::printf("Mean best IoU per object (objects at IoU >= 0.8): uwgrasp's organised path (the default on "
+              "these frames), its k-d tree path, PCL RegionGrowing on the organised path's cloud and "
+              "normals, PCL's organised chain on the raw frame.\n\n");
+  std::printf("| scene | objects | organised | k-d tree | PCL RegionGrowing | PCL organised chain |\n");
   std::printf("|---|---|---|---|---|---|\n");
-  double su = 0, sp = 0;
-  std::size_t n = 0, gu = 0, gp = 0;
+  Tally tally[4];
+  std::size_t n = 0;
   for (const char* name : {"mOSD_learn0", "mOSD_learn17", "mOSD_learn25", "mOSD_learn33"}) {
     const std::string path = dir + name + ".pcd";
     if (!std::filesystem::exists(path)) {
@@ -89,19 +108,26 @@ int main(int argc, char** argv) {
     }
     const Cloud in = io::load_cloud(path);
     const segment::Scene s = segment::segment_scene(in, cfg.preprocess, cfg.segment, cfg.seed);
-    const auto ours = best_iou(in.labels, segment::input_labels(s));
-    const auto ref = best_iou(in.labels, pcl_labels(s, cfg.segment.region));
-    double mu = 0, mp = 0;
-    std::size_t ku = 0, kp = 0;
-    for (auto [g, v] : ours) mu += v, ku += v >= 0.8;
-    for (auto [g, v] : ref) mp += v, kp += v >= 0.8;
-    const std::size_t k = ours.size();
-    std::printf("| %s | %zu | %.3f | %zu/%zu | %.3f | %zu/%zu |\n", name, k, mu / double(k), ku, k,
-                mp / double(k), kp, k);
-    su += mu, sp += mp, n += k, gu += ku, gp += kp;
+    const segment::Scene kd = segment::segment_scene(in, kd_cfg.preprocess, kd_cfg.segment, cfg.seed);
+    const std::map<std::uint32_t, double> ious[4] = {
+        best_iou(in.labels, segment::input_labels(s)), best_iou(in.labels, segment::input_labels(kd)),
+        best_iou(in.labels, pcl_labels(s, cfg.segment.region)),
+        best_iou(in.labels, bench::pcl_organised_chain(bench::to_pcl_organised(in)))};
+    const std::size_t k = ious[0].size();
+    std::printf("| %s | %zu |", name, k);
+    for (int m = 0; m < 4; ++m) {
+      double mean;
+      std::size_t good;
+      tally[m].add(ious[m], mean, good);
+      std::printf(" %.3f (%zu/%zu) |", mean, good, k);
+    }
+    std::printf("\n");
+    n += k;
   }
-  if (n > 0)
-    std::printf("| all | %zu | %.3f | %.0f %% | %.3f | %.0f %% |\n", n, su / double(n),
-                100.0 * double(gu) / double(n), sp / double(n), 100.0 * double(gp) / double(n));
+  if (n == 0) return 0;
+  std::printf("| all | %zu |", n);
+  for (const auto& t : tally)
+    std::printf(" %.3f (%.0f %%) |", t.sum / double(n), 100.0 * double(t.good) / double(n));
+  std::printf("\n");
   return 0;
 }

@@ -15,25 +15,35 @@
 namespace uwgrasp::cloud {
 
 namespace {
+// How far window_mean_distances widens a window that holds fewer than k pixels: to this many
+// times its half width.
+constexpr std::uint32_t kGrowth = 3;
+
+// Calls f(s) for every in-play pixel s at Chebyshev distance `ring` from point j's pixel
+// (row-major).
+template <class F>
+void for_each_ring_pixel(const PixelMap& map, std::size_t j, int ring, F&& f) {
+  const int W = int(map.width), H = int(map.height);
+  const int u = int(map.pixel[j] % map.width), v = int(map.pixel[j] / map.width);
+  for (int dv = -ring; dv <= ring; ++dv) {
+    const int vv = v + dv;
+    if (vv < 0 || vv >= H) continue;
+    const int step = (dv == -ring || dv == ring) ? 1 : 2 * ring;  // whole edge rows, else ends
+    for (int du = -ring; du <= ring; du += step) {
+      const int uu = u + du;
+      if (uu < 0 || uu >= W) continue;
+      const std::int32_t s = map.slot[std::size_t(vv) * map.width + std::size_t(uu)];
+      if (s >= 0) f(std::size_t(s));
+    }
+  }
+}
+
 // Calls f(s, ring) for every in-play pixel s of point j's window but its own, ring by ring
 // (Chebyshev distance 1, 2, ..., row-major within a ring), so lists start with the pixels next
 // to the point.
 template <class F>
 void for_each_window_pixel(const PixelMap& map, std::size_t j, int h, F&& f) {
-  const int W = int(map.width), H = int(map.height);
-  const int u = int(map.pixel[j] % map.width), v = int(map.pixel[j] / map.width);
-  for (int ring = 1; ring <= h; ++ring)
-    for (int dv = -ring; dv <= ring; ++dv) {
-      const int vv = v + dv;
-      if (vv < 0 || vv >= H) continue;
-      const int step = (dv == -ring || dv == ring) ? 1 : 2 * ring;  // whole edge rows, else ends
-      for (int du = -ring; du <= ring; du += step) {
-        const int uu = u + du;
-        if (uu < 0 || uu >= W) continue;
-        const std::int32_t s = map.slot[std::size_t(vv) * map.width + std::size_t(uu)];
-        if (s >= 0) f(std::size_t(s), ring);
-      }
-    }
+  for (int ring = 1; ring <= h; ++ring) for_each_ring_pixel(map, j, ring, [&](std::size_t s) { f(s, ring); });
 }
 
 // Each point's distance from the viewpoint, for the continuity test.
@@ -157,15 +167,18 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
                                          const PixelMap& map, std::uint32_t half_window,
                                          std::uint32_t k) {
   check_window(half_window);
-  const std::size_t side = 2 * std::size_t(half_window) + 1;
+  const int widest = int(kGrowth * half_window);
+  const std::size_t side = 2 * std::size_t(widest) + 1;
   std::vector<float> mean(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const auto& r) {
     std::vector<float> d2(side * side);
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       std::size_t n = 0;
-      for_each_window_pixel(map, j, int(half_window), [&](std::size_t s, int) {
-        d2[n++] = (points[s] - points[j]).squaredNorm();
-      });
+      // The window, then whole rings more while it holds fewer than k pixels in play: next to a
+      // hole or a removed plane the k nearest points lie further out in the image, where a k-d
+      // tree search finds them.
+      for (int ring = 1; ring <= widest && (ring <= int(half_window) || n < k); ++ring)
+        for_each_ring_pixel(map, j, ring, [&](std::size_t s) { d2[n++] = (points[s] - points[j]).squaredNorm(); });
       if (n == 0) {
         mean[j] = std::numeric_limits<float>::infinity();
         continue;
@@ -241,6 +254,26 @@ void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cf
                                                      cloud.viewpoint));
                    });
   });
+}
+
+std::vector<PointNormal> window_normals_of(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                                           const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint,
+                                           std::span<const std::uint32_t> which) {
+  check_window(cfg.normal_half_window);
+  if (map.pixel.size() != points.size()) throw Error("normals: the pixel map does not fit this cloud");
+  OrganisedConfig own = cfg;
+  own.half_window = cfg.normal_half_window;
+  const std::size_t whole = std::size_t(2 * own.half_window + 1) * (2 * own.half_window + 1);
+  const Ranges range(points, viewpoint);
+  std::vector<PointNormal> out(which.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, which.size(), 256), [&](const auto& r) {
+    std::vector<std::uint32_t> list(whole);
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::size_t n = window_list(points, map, own, range, which[i], list.data(), nullptr);
+      out[i] = normal_from(points, {list.data(), n}, points[which[i]], viewpoint);
+    }
+  });
+  return out;
 }
 
 }  // namespace uwgrasp::cloud

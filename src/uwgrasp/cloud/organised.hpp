@@ -45,7 +45,8 @@ Neighbours window_neighbours(std::span<const Eigen::Vector3f> points, const Pixe
 
 // The statistic of statistical outlier removal (4.1.3) over the window: each point's mean
 // distance to its k nearest points among every pixel of its window still in play (continuous or
-// not, as a k-d tree search would find them), or infinity when the window holds none.
+// not, as a k-d tree search would find them). A window holding fewer than k such pixels grows
+// ring by ring (to 3 x half_window) until it holds k; infinity when even that holds none.
 std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points,
                                          const PixelMap& map, std::uint32_t half_window,
                                          std::uint32_t k);
@@ -60,5 +61,10 @@ void keep_neighbours(Neighbours& nb, std::span<const std::uint32_t> kept);
 // the window size); the others sum their pixels. Fills cloud.normals and cloud.curvature;
 // map.pixel[j] is the pixel of cloud.points[j].
 void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg);
+
+// The same normals (summing the pixels, for a few points) of points[which[i]] only: out[i].
+std::vector<PointNormal> window_normals_of(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                                           const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint,
+                                           std::span<const std::uint32_t> which);
 
 }  // namespace uwgrasp::cloud

@@ -1,6 +1,8 @@
 #include "uwgrasp/cloud/preprocess.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <string>
 #include <utility>
 
@@ -45,9 +47,31 @@ void widen_to_noise(const Cloud& cur, const PlaneConfig& cfg, Preprocessed& out)
   }
 }
 
-void remove_plane(Cloud& cur, const PreprocessConfig& cfg, std::uint64_t seed, Preprocessed& out) {
+// Of the widened band's points beyond the fixed tolerance, those whose window normal turns more
+// than normal_angle from the plane's leave the inliers (4.1.4 with the normals, as PCL's
+// organised plane segmentation also tests them).
+void keep_turned_points(const Cloud& cur, const PixelMap& map, const PreprocessConfig& cfg,
+                        PlaneResult& plane) {
+  const Eigen::Vector4f& n = plane.coefficients;
+  std::vector<std::uint32_t> band;
+  for (const auto i : plane.inliers)
+    if (std::abs(n.head<3>().dot(cur.points[i]) + n[3]) > cfg.plane.distance) band.push_back(i);
+  if (band.empty()) return;
+  const auto normals = window_normals_of(cur.points, map, cfg.organised, cur.viewpoint, band);
+  const float cos_max = std::cos(cfg.plane.normal_angle * float(std::numbers::pi) / 180.0f);
+  std::vector<char> off(cur.size(), 0);
+  for (std::size_t b = 0; b < band.size(); ++b)
+    off[band[b]] = std::abs(normals[b].normal.dot(n.head<3>())) < cos_max;
+  std::erase_if(plane.inliers, [&](std::uint32_t i) { return off[i] != 0; });
+}
+
+// The plane (4.1.4), widened to the measured noise; `map` (organised frames) lets the normals
+// keep an object's foot.
+void remove_plane(Cloud& cur, const PreprocessConfig& cfg, std::uint64_t seed, Preprocessed& out,
+                  const PixelMap* map = nullptr) {
   out.plane = fit_plane(cur, cfg.plane, seed);
   if (out.plane.found && cfg.plane.noise_sigmas > 0.0f) widen_to_noise(cur, cfg.plane, out);
+  if (out.plane.found && map && cfg.plane.normal_angle > 0.0f) keep_turned_points(cur, *map, cfg, out.plane);
   if (!out.plane.found && cfg.plane.required)
     throw Error("preprocess: no plane found (preprocess.plane.distance = " +
                 std::to_string(cfg.plane.distance) + " m)");
@@ -172,7 +196,8 @@ void preprocess_organised(const Cloud& in, const PreprocessConfig& cfg, std::uin
   }
   if (cfg.plane.enabled) {
     timer.start("plane");
-    remove_plane(cur, cfg, seed, out);
+    const PixelMap all = pixels_in_play(in, out.output_of_input, cur.size());
+    remove_plane(cur, cfg, seed, out, &all);
   }
   timer.start("outliers");
   PixelMap map = pixels_in_play(in, out.output_of_input, cur.size());
@@ -187,6 +212,7 @@ void preprocess_organised(const Cloud& in, const PreprocessConfig& cfg, std::uin
       map = pixels_in_play(in, out.output_of_input, cur.size());
     }
   }
+  require_points(cur, "outliers");  // e.g. a frame of isolated pixels
   out.counts.after_outliers = cur.size();
   timer.start("normals");
   window_normals(cur, map, cfg.organised);

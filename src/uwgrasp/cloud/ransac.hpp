@@ -19,6 +19,10 @@ struct PlaneConfig {
   // > 0: the inlier band widens to this many times the depth noise measured on the plane at
   // each point's range (plane_noise.hpp); 0: the fixed `distance` alone (the thesis).
   float noise_sigmas = 3.0f;
+  // > 0, organised frames: a point in the widened band but beyond `distance` stays off the plane
+  // when its window's normal turns more than this many degrees from the plane's (the foot of an
+  // object standing on it, not noisy floor); 0: the band alone.
+  float normal_angle = 30.0f;
 };
 
 struct PlaneResult {
