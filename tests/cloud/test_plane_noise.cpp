@@ -1,6 +1,10 @@
 // The depth noise measured on the seafloor (plane_noise.hpp) against floors of known noise.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
 #include "shapes.hpp"
 #include "uwgrasp/cloud/plane_noise.hpp"
 #include "uwgrasp/cloud/preprocess.hpp"
@@ -69,4 +73,64 @@ TEST(PlaneNoise, TheInlierBandFollowsTheMeasuredNoise) {
   EXPECT_GT(b.cloud.size(), box * 55 / 100);
 }
 
+}  // namespace uwgrasp::cloud
+
+namespace uwgrasp::cloud {
+// A camera 1 m above a noisy floor (y = 1, optical frame) looking level at a 25 cm wall 1.5 m
+// away: depth noise sigma(r) = 7 mm + 1 mm/m^2 r^2 along the ray (6 mm across the floor at the
+// wall), so the plane's band (3 sigma) reaches 1.8 cm up the wall's foot. `height` gets each
+// pixel's true height above the floor on the wall, -1 off it.
+Cloud wall_on_noisy_floor(std::vector<float>& height) {
+  constexpr std::uint32_t n = 480;
+  constexpr float f = 300.0f;
+  Cloud c;
+  c.width = c.height = n;
+  Rng rng(11);
+  for (std::uint32_t v = 0; v < n; ++v)
+    for (std::uint32_t u = 0; u < n; ++u) {
+      const Eigen::Vector3f d((float(u) - n / 2.0f) / f, (float(v) - n / 2.0f) / f, 1.0f);
+      const float wall_y = 1.5f * d.y();  // where the ray meets the wall's plane z = 1.5
+      const bool on_wall = wall_y >= 0.75f && wall_y <= 1.0f;
+      const float t = on_wall ? 1.5f : (d.y() > 0.0f ? 1.0f / d.y() : 1e9f);
+      const float r = t * d.norm();
+      height.push_back(on_wall ? 1.0f - wall_y : -1.0f);
+      if (r > 6.0f) {
+        c.points.emplace_back(std::nanf(""), std::nanf(""), std::nanf(""));
+        continue;
+      }
+      const float sigma = 0.007f + 0.001f * r * r;
+      c.points.push_back(d * t * (1.0f + sigma * float(rng.normal()) / r));
+    }
+  return c;
+}
+
+// Plane removal with the normals (4.1.4): in the band the measured noise widens, an object's
+// foot (normal across the plane's) stays; without the normals the band takes it.
+TEST(Organised, PlaneRemovalWithNormalsKeepsAnObjectsFoot) {
+  std::vector<float> height;
+  const Cloud c = wall_on_noisy_floor(height);
+  PreprocessConfig cfg;
+  cfg.outliers.enabled = false;
+  std::size_t floor_kept[2] = {0, 0};
+  const auto kept_foot = [&](float angle) {
+    cfg.plane.normal_angle = angle;
+    StageTimer t;
+    const Preprocessed p = preprocess(c, cfg, 1, t);
+    EXPECT_TRUE(p.plane.found);
+    EXPECT_TRUE(p.noise.found);
+    std::size_t foot = 0, kept = 0;
+    for (std::size_t i = 0; i < c.size(); ++i)
+      if (height[i] >= 0.012f && height[i] <= 0.018f) ++foot, kept += !p.plane_of_input[i];
+      else if (height[i] < 0.0f && p.output_of_input[i] >= 0) ++floor_kept[angle > 0.0f];
+    EXPECT_GT(foot, 300u);
+    return double(kept) / double(foot);
+  };
+  const double with = kept_foot(30.0f), without = kept_foot(0.0f);
+  std::printf("wall points 12-18 mm above the floor kept: %.2f with the normals, %.2f without\n", with, without);
+  std::printf("floor points left: %zu with the normals, %zu without\n", floor_kept[1], floor_kept[0]);
+  EXPECT_GT(with, 0.7);
+  EXPECT_LT(without, 0.45);
+  // The floor itself stays removed: its normals agree with the plane's.
+  EXPECT_LT(double(floor_kept[1]), 1.5 * double(floor_kept[0]) + 100.0);
+}
 }  // namespace uwgrasp::cloud
