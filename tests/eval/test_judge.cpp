@@ -230,6 +230,28 @@ TEST(Judge, BadInputIsAnError) {
   RobustConfig rc;
   rc.mu = 0;
   EXPECT_THROW(robust_share(w, camera_along_x(), kGripper, Pose::Identity(), 0, rc, 1, 0), Error);
+  Pose sheared = grasp_at(V3(0, 0, 0.3), kDown, V3::UnitY());
+  sheared.linear()(0, 1) += 0.01;  // not a rotation
+  EXPECT_THROW(judge(w, camera_along_x(), kGripper, sheared, 0), Error);
+  Pose mirrored = grasp_at(V3(0, 0, 0.3), kDown, V3::UnitY());
+  mirrored.linear().col(2) *= -1.0;
+  EXPECT_THROW(judge(w, camera_along_x(), kGripper, mirrored, 0), Error);
+}
+
+// A pose whose rotation is a few 1e-7 off orthonormal - float detectors, JSON digits and products
+// of frames make them - is judged as the rotation it stands for, not refused (the pads' rays
+// once failed their unit-direction check on such a pose, 1.2e-6 off).
+TEST(Judge, AlmostOrthonormalPosesAreJudgedAsTheRotationTheyStandFor) {
+  const sim::World w(scene({box("cube", V3::Constant(0.04), at(V3(0, 0, 0.3)))}));
+  const Pose exact = grasp_at(V3(0, 0, 0.3), kDown, V3(0.2, 1, 0).normalized());
+  Pose rounded = exact;
+  rounded.linear() *= 1.0 + 2e-6;
+  rounded.linear()(1, 2) += 1e-6;
+  const Judgement a = judge(w, camera_along_x(), kGripper, exact, 0);
+  const Judgement b = judge(w, camera_along_x(), kGripper, rounded, 0);
+  ASSERT_EQ(b.verdict, a.verdict);
+  EXPECT_NEAR(b.width, a.width, 1e-6);
+  EXPECT_NEAR(b.mu_min, a.mu_min, 1e-5);
 }
 
 }  // namespace

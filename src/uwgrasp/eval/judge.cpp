@@ -28,9 +28,17 @@ Judgement judge(const sim::World& world, const Camera& camera, const grasp::Grip
     throw Error("judge: target object " + std::to_string(target) + " is not one of the scene's " +
                 std::to_string(objects) + " objects");
   if (!T.matrix().allFinite()) throw Error("judge: the grasp pose is not finite");
+  // Poses arrive through float detectors, JSON digits and products of frames: a rotation a few
+  // 1e-7 from orthonormal is one (re-orthonormalised, so the pads' rays stay unit); one far
+  // from it is not a pose.
+  const Eigen::Matrix3d R = T.linear();
+  if (!((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-3) || R.determinant() < 0.0)
+    throw Error("judge: the grasp pose's orientation is not a rotation");
+  Pose G = T;
+  G.linear() = Eigen::Quaterniond(R).normalized().toRotationMatrix();
   Judgement j;
-  if (detail::collides(world, camera, gripper, T, cfg, j)) return j;
-  detail::close_pads(world, gripper, T, target, cfg, j);
+  if (detail::collides(world, camera, gripper, G, cfg, j)) return j;
+  detail::close_pads(world, gripper, G, target, cfg, j);
   return j;
 }
 
