@@ -25,6 +25,8 @@ const Metric kMetrics[] = {
     {"q_i inliers", [](const ScoredOutcome& s) { return s.scores.inliers; }},
     {"q_v vehicle", [](const ScoredOutcome& s) { return s.scores.vehicle; }},
     {"-mu_required (own antipodal estimate)", [](const ScoredOutcome& s) { return -s.mu_required; }},
+    {"robustness on the model (robust mode)", [](const ScoredOutcome& s) { return s.robustness; }},
+    {"q_fc predicted force closure (robust mode)", [](const ScoredOutcome& s) { return s.force_closure; }},
 };
 
 double median(std::vector<double> v) {
@@ -57,7 +59,8 @@ void write_judged_calibration(std::ostringstream& md, const std::vector<JudgedCa
   std::vector<double> ours, judge;
   for (const auto& s : all)
     if (std::isfinite(s.mu_required) && std::isfinite(s.mu_min)) ours.push_back(s.mu_required), judge.push_back(s.mu_min);
-  md << "\nThe detector's `mu_required` (from the one-sided cloud's normals) against the judge's "
+  md << "\nThe detector's `mu_required` (robust mode: predicted on the object's model; thesis mode: from "
+        "the one-sided cloud's normals) against the judge's "
         "smallest friction coefficient on the full mesh, over the "
      << ours.size() << " candidates that close on the object: median " << fmt("%.2f", median(ours))
      << " against " << fmt("%.2f", median(judge)) << ", rank correlation "

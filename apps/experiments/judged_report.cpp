@@ -112,7 +112,8 @@ void write_success(std::ostringstream& md, const std::vector<JudgedCaseResult>& 
      << ", averaged over iterations (0 without a grasp). Precision@10 and AP over the top "
      << p.summary.top << " as graspnetAPI counts them (missing grasps fail). Feasible share: the "
         "candidates that passed every check before ranking, of those drawn (mean over the runs); "
-        "detect ms: the median whole detection (preprocessing to ranking) per run.\n\n";
+        "detect ms: the median whole detection (preprocessing to ranking) per run. Every run, with "
+        "the detector's own prediction for its top-1 beside the judge's finding: runs.csv.\n\n";
   success_header(md, p, "water");
   for (const auto& w : waters) {
     std::vector<const JudgedCaseResult*> cs;
@@ -138,6 +139,34 @@ void write_modes(std::ostringstream& md, const std::vector<JudgedCaseResult>& re
   std::stable_sort(modes.begin(), modes.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
   for (const auto& [m, n] : modes) md << "| " << m << " | " << n << " | " << pct(double(n) / double(t.runs)) << " |\n";
   md << "\n";
+}
+// One line per iteration: what the detector predicted for its top-1 beside what the judge found,
+// so a failing case can be taken apart without rerunning it.
+std::string runs_csv(const std::vector<JudgedCaseResult>& results, const JudgedPlan& p) {
+  std::ostringstream csv;
+  csv << "scene,water,seed,outcome,judged_mu_min,judged_width_m,robust_top1,precision_at_10,"
+         "predicted_mu,predicted_robustness,predicted_width_m,contact_seen_left,contact_seen_right,"
+         "feasible,candidates,object_points,visible_points,detect_ms,error\n";
+  const auto num = [](double v) { return std::isfinite(v) ? fmt("%.4f", v) : std::string(); };
+  for (const auto& r : results)
+    for (std::size_t i = 0; i < r.runs.size(); ++i) {
+      const JudgedRun& run = r.runs[i];
+      std::string error = run.error;
+      std::replace(error.begin(), error.end(), ',', ';');
+      std::replace(error.begin(), error.end(), '\n', ' ');
+      const bool closes = run.has_top1 && run.top1.verdict != eval::Verdict::collision &&
+                          run.top1.verdict != eval::Verdict::miss;
+      csv << r.c.scene << "," << r.c.label() << "," << p.base.seed + i << ","
+          << top1_mode(run, p.summary.reference_mu, r.grasp_exists) << ","
+          << (run.has_top1 ? num(run.top1.mu_min) : "") << "," << (closes ? num(run.top1.width) : "") << ","
+          << num(run.robust) << "," << num(run.summary.precision[2]) << "," << num(run.predicted_mu) << ","
+          << num(run.predicted_robustness) << "," << num(run.predicted_width) << ","
+          << (run.has_top1 ? std::to_string(int(run.contact_seen[0])) : "") << ","
+          << (run.has_top1 ? std::to_string(int(run.contact_seen[1])) : "") << "," << run.feasible << ","
+          << run.candidates << "," << run.object_points << "," << run.visible_points << ","
+          << fmt("%.1f", run.detect_ms) << "," << error << "\n";
+    }
+  return csv.str();
 }
 }  // namespace
 
@@ -189,6 +218,7 @@ void write_judged_report(const std::string& dir, const std::vector<JudgedCaseRes
     write_png((std::filesystem::path(dir) / file).string(), viz::grid(tiles[object], int(waters[object].size())));
     md << "![" << object << "](" << file << ")\n\n";
   }
+  io::write_text((std::filesystem::path(dir) / "runs.csv").string(), runs_csv(results, plan));
   io::write_text((std::filesystem::path(dir) / "report.md").string(), md.str());
 }
 

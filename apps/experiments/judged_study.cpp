@@ -37,7 +37,8 @@ void score_outcomes(const Setting& st, const eval::Camera& cam, const grasp::Gri
   tbb::parallel_for(std::size_t(0), grasps.size(), [&](std::size_t i) {
     const eval::Judgement j = i < e.judgements.size() ? e.judgements[i]
                                                       : eval::judge(st.world, cam, g, poses[i], st.target);
-    scored[i] = {grasps[i].scores, grasps[i].friction.mu_required,
+    scored[i] = {grasps[i].scores, grasps[i].friction.mu_required, grasps[i].robustness,
+                 grasps[i].force_closure,
                  j.verdict == eval::Verdict::closes ? j.mu_min : std::numeric_limits<double>::infinity(),
                  j.holds(mu)};
   });
@@ -77,7 +78,14 @@ JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed
   run.summary = e.summary;
   run.robust = e.robust_top1;
   run.has_top1 = !e.judgements.empty();
-  if (run.has_top1) run.top1 = e.judgements.front();
+  if (run.has_top1) {
+    run.top1 = e.judgements.front();
+    const grasp::Grasp& best = d.result.grasps.front();
+    run.predicted_mu = best.friction.mu_required;
+    run.predicted_robustness = best.robustness;
+    run.predicted_width = best.width;
+    run.contact_seen[0] = best.contact_seen[0], run.contact_seen[1] = best.contact_seen[1];
+  }
   if (plan.calibrate) score_outcomes(st, cam, g, d, poses, e, plan.summary.reference_mu, out.scored);
   run.judge_ms = ms_since(t1);
   if (first) {

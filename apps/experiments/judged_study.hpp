@@ -45,6 +45,12 @@ struct JudgedRun {
   double robust = std::numeric_limits<double>::quiet_NaN();
   bool has_top1 = false;
   eval::Judgement top1;
+  // The detector's own view of its top-1 (runs.csv): predicted friction, robustness on the
+  // model, width at closure and whether each contact lies on the camera's points.
+  double predicted_mu = std::numeric_limits<double>::quiet_NaN();
+  double predicted_robustness = std::numeric_limits<double>::quiet_NaN();
+  double predicted_width = std::numeric_limits<double>::quiet_NaN();
+  bool contact_seen[2] = {false, false};
   double detect_ms = 0, judge_ms = 0;
 };
 
@@ -52,6 +58,7 @@ struct JudgedRun {
 struct ScoredOutcome {
   grasp::Scores scores;
   double mu_required = 0;  // the detector's own antipodal estimate (+inf: none)
+  double robustness = 0, force_closure = 0;  // robust mode: on the object's model
   double mu_min = 0;       // the judge's (+inf when it does not close)
   bool holds = false;
 };
