@@ -133,21 +133,29 @@ Model object_model(const LevelCloud& l, const Cloud& object, const Gripper& g, c
                    const Surroundings* around, ObjectGrasps& out) {
   Model m{l, g, around ? level_plane(*around, out.frames) : std::nullopt, {}};
   if (!cfg.shape.enabled) return m;
-  out.shape = complete_shape(l.points, object.points, out.frames, m.floor, cfg.shape);
-  m.cloud.points.insert(m.cloud.points.end(), out.shape.points.begin(), out.shape.points.end());
-  m.cloud.normals.insert(m.cloud.normals.end(), out.shape.normals.begin(), out.shape.normals.end());
+  std::optional<SceneSight> sight;
+  if (around != nullptr)
+    sight = SceneSight{around->points, around->has_plane ? std::optional(around->plane) : std::nullopt};
+  out.shape = complete_shape(l.points, object.points, out.frames, m.floor, cfg.shape, l.normals,
+                             sight ? &*sight : nullptr);
+  const auto append = [](LevelCloud& to, const std::vector<Eigen::Vector3f>& p, const std::vector<Eigen::Vector3f>& n) {
+    to.points.insert(to.points.end(), p.begin(), p.end());
+    to.normals.insert(to.normals.end(), n.begin(), n.end());
+  };
+  append(m.cloud, out.shape.mirrored_points, out.shape.mirrored_normals);
+  append(m.cloud, out.shape.points, out.shape.normals);
   m.core = l;
-  m.core.points.insert(m.core.points.end(), out.shape.core_points.begin(), out.shape.core_points.end());
-  m.core.normals.insert(m.core.normals.end(), out.shape.core_normals.begin(), out.shape.core_normals.end());
+  append(m.core, out.shape.core_points, out.shape.core_normals);
   m.gripper = grow_solids(g, std::max(cfg.shape.min_margin, cfg.shape.margin_sigmas * out.shape.noise));
   return m;
 }
 
 // What robust scoring asks the model: `core_bvh` is over m.core's points (unused without them).
 ModelView model_view(const Model& m, const PointBvh& bvh, const PointBvh& core_bvh, std::size_t measured,
-                     const ObjectShape& shape) {
+                     const ObjectShape& shape, const RobustConfig& cfg) {
   ModelView v{bvh, m.cloud.points, m.cloud.normals, measured, shape, m.gripper, m.floor,
-              0.0005f + 2.0f * shape.noise, std::max(0.003f, 2.0f * shape.voxel), nullptr, {}, {}};
+              0.0005f + 2.0f * shape.noise, std::max(0.003f, 2.0f * shape.voxel), nullptr, {}, {},
+              cfg.core_friction};
   if (!m.core.points.empty()) v.core_bvh = &core_bvh, v.core_points = m.core.points, v.core_normals = m.core.normals;
   return v;
 }
@@ -273,7 +281,7 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
                                 out.frames, cfg.score, out.max_inliers);
   } else {
     const PointBvh core_bvh = model.core.points.empty() ? PointBvh{} : build_bvh(model.core.points);
-    const ModelView view = model_view(model, bvh, core_bvh, l.points.size(), out.shape);
+    const ModelView view = model_view(model, bvh, core_bvh, l.points.size(), out.shape, cfg.score.robust);
     out.grasps = score_robust(view, model.cloud, pool, out, cfg.score, seed, timer);
   }
   timer.stop();

@@ -36,7 +36,8 @@ ContactPrediction predict(const ModelView& m, const Candidate& c) {
   const ContactPrediction least =
       predict_contacts(m.core_points, m.core_normals, idx, c, m.band, m.radius, m.measured);
   p.valid = least.valid;
-  p.mu = least.valid ? std::max(p.mu, least.mu) : std::numeric_limits<float>::infinity();
+  if (!least.valid) p.mu = std::numeric_limits<float>::infinity();
+  else if (m.core_friction) p.mu = std::max(p.mu, least.mu);
   return p;
 }
 

@@ -23,6 +23,12 @@ struct RobustConfig {
   std::uint32_t candidates = 40; // the best-predicted candidates whose robustness is measured
   double sigma_position = 0.005; // m per axis
   double sigma_angle = 0.0524;   // rad per axis (3 degrees)
+  // Whether the thin core's friction estimate counts too (the worse of the two). Off by
+  // default: the core's back is a voxel shell whose normals are too coarse to predict friction
+  // where the model's back is measured or mirrored from what was (on the mustard bottle the
+  // worse-of-two estimate made the robustness a coin toss against the judge, AUC 0.51); the
+  // core still has to give both contacts, so no grasp closes on assumed volume alone.
+  bool core_friction = false;
 };
 
 // The object's model and the gripper the check uses.
@@ -38,11 +44,12 @@ struct ModelView {
   // with its own BVH. Unset: only the model above is asked.
   const PointBvh* core_bvh = nullptr;
   std::span<const Eigen::Vector3f> core_points, core_normals;
+  bool core_friction = false;  // RobustConfig::core_friction
 };
 
 // The predicted contacts of a candidate the check found feasible: on the model, and when the
-// view has a core, the worse of the two friction estimates (invalid when either side finds no
-// contacts - the pads would close on assumed volume alone).
+// view has a core, invalid unless the core gives both contacts too (else the pads would close
+// on assumed volume alone); with core_friction, the worse of the two friction estimates.
 ContactPrediction predict(const ModelView& m, const Candidate& c);
 // Whether the candidate holds on the model at mu (check, inside, floor, width, force closure).
 bool holds_on_model(const ModelView& m, const Candidate& c, double mu);

@@ -39,11 +39,13 @@ std::optional<float> floor_z(const std::optional<FloorPlane>& f, float x, float 
   return -((*f)[0] * x + (*f)[1] * y + (*f)[3]) / (*f)[2];
 }
 
-// Sizes the grid over the object, down to the seafloor below it (or its lowest point).
-void size_grid(ObjectShape& s, std::span<const V3> level, const std::optional<FloorPlane>& floor,
-               const ShapeConfig& cfg) {
+// Sizes the grid over the object and its mirrored back, down to the seafloor below it (or its
+// lowest point).
+void size_grid(ObjectShape& s, std::span<const V3> level, std::span<const V3> mirrored,
+               const std::optional<FloorPlane>& floor, const ShapeConfig& cfg) {
   V3 lo = V3::Constant(std::numeric_limits<float>::max()), hi = -lo;
   for (const V3& p : level) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  for (const V3& p : mirrored) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const float pad = cfg.min_thickness;
   lo.head<2>() -= V3::Constant(pad).head<2>(), hi.head<2>() += V3::Constant(pad).head<2>();
   float bottom = hi.z() + pad;
@@ -60,25 +62,40 @@ void size_grid(ObjectShape& s, std::span<const V3> level, const std::optional<Fl
   s.cells.assign(std::size_t(n.prod()), Occupancy::free);
 }
 
-// Marks the unseen voxels under the visible surface (down to the seafloor) and within the
-// minimum thickness behind each visible point, wherever the camera's view is blocked by the
-// object.
-template <class Shadow>
-void fill_unseen(Grid g, std::span<const V3> level, std::span<const V3> camera, const Frames& frames,
-                 const std::optional<FloorPlane>& floor, const ShapeConfig& cfg, Shadow in_shadow) {
+// Marks the seen voxels, then the mirrored ones still free (keeping one mirrored point per
+// voxel), and returns per column the highest of them.
+std::vector<int> mark_surfaces(Grid g, std::span<const V3> level, std::span<const V3> mirrored,
+                               std::span<const V3> mirrored_normals) {
   ObjectShape& s = g.s;
   std::vector<int> top(std::size_t(s.nx) * std::size_t(s.ny), s.nz);
-  for (const V3& p : level) {
+  const auto mark = [&](const V3& p, Occupancy o) {
     const Eigen::Vector3i c = g.cell(p);
-    if (!g.inside(c.x(), c.y(), c.z())) continue;
-    s.cells[g.index(c.x(), c.y(), c.z())] = Occupancy::seen;
+    if (!g.inside(c.x(), c.y(), c.z())) return false;
+    Occupancy& cell = s.cells[g.index(c.x(), c.y(), c.z())];
+    if (o == Occupancy::mirrored && cell != Occupancy::free) return false;
+    cell = o;
     for (int dj = -1; dj <= 1; ++dj)  // dilated by one column: gaps between points are not holes
       for (int di = -1; di <= 1; ++di)
         if (g.inside(c.x() + di, c.y() + dj, 0)) {
           int& t = top[std::size_t(c.y() + dj) * std::size_t(s.nx) + std::size_t(c.x() + di)];
           t = std::min(t, c.z());
         }
-  }
+    return true;
+  };
+  for (const V3& p : level) mark(p, Occupancy::seen);
+  for (std::size_t i = 0; i < mirrored.size(); ++i)
+    if (mark(mirrored[i], Occupancy::mirrored))
+      s.mirrored_points.push_back(mirrored[i]), s.mirrored_normals.push_back(mirrored_normals[i]);
+  return top;
+}
+
+// Marks the unseen voxels under the visible (and mirrored) surface down to the seafloor, and
+// within the minimum thickness behind each visible point, wherever the camera's view is
+// blocked by the object.
+template <class Shadow>
+void fill_unseen(Grid g, std::span<const V3> camera, const std::vector<int>& top, const Frames& frames,
+                 const std::optional<FloorPlane>& floor, const ShapeConfig& cfg, Shadow in_shadow) {
+  ObjectShape& s = g.s;
   for (int j = 0; j < s.ny; ++j)
     for (int i = 0; i < s.nx; ++i) {
       const V3 base = g.centre(i, j, 0);
@@ -102,21 +119,32 @@ void fill_unseen(Grid g, std::span<const V3> level, std::span<const V3> camera, 
   }
 }
 
+// Whether a mirrored voxel touches (i, j, k): the mirrored points already give the surface there,
+// with the seen side's normals, which a voxel shell only approximates.
+bool by_mirrored(Grid g, int i, int j, int k) {
+  for (int dk = -1; dk <= 1; ++dk)
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di)
+        if (g.get(i + di, j + dj, k + dk) == Occupancy::mirrored) return true;
+  return false;
+}
+
 // The unseen voxels (`part` says which) next to one outside the part (`outside`), with normals
 // pointing away from the part's mass around them (the sum of the offsets of the part's voxels
-// in a 5 x 5 x 5 block, negated).
+// in a 5 x 5 x 5 block, negated); with `mirrored_surface`, not where mirrored points lie.
 template <class Part, class Outside>
-void shell(Grid g, Part part, Outside outside, std::vector<V3>& points, std::vector<V3>& normals) {
+void shell(Grid g, Part part, Outside outside, bool mirrored_surface, std::vector<V3>& points,
+           std::vector<V3>& normals) {
   ObjectShape& s = g.s;
   for (int k = 0; k < s.nz; ++k)
     for (int j = 0; j < s.ny; ++j)
       for (int i = 0; i < s.nx; ++i) {
         const Occupancy o = s.cells[g.index(i, j, k)];
-        if (o == Occupancy::free || o == Occupancy::seen || !part(o)) continue;
+        if (o == Occupancy::free || o == Occupancy::seen || o == Occupancy::mirrored || !part(o)) continue;
         const bool boundary = outside(g.get(i - 1, j, k)) || outside(g.get(i + 1, j, k)) ||
                               outside(g.get(i, j - 1, k)) || outside(g.get(i, j + 1, k)) ||
                               outside(g.get(i, j, k - 1)) || outside(g.get(i, j, k + 1));
-        if (!boundary) continue;
+        if (!boundary || (mirrored_surface && by_mirrored(g, i, j, k))) continue;
         V3 n = V3::Zero();
         for (int dk = -2; dk <= 2; ++dk)
           for (int dj = -2; dj <= 2; ++dj)
@@ -140,7 +168,8 @@ std::size_t ObjectShape::count(Occupancy o) const { return std::size_t(std::coun
 
 ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
                            std::span<const Eigen::Vector3f> camera, const Frames& frames,
-                           const std::optional<FloorPlane>& floor, const ShapeConfig& cfg) {
+                           const std::optional<FloorPlane>& floor, const ShapeConfig& cfg,
+                           std::span<const Eigen::Vector3f> normals, const SceneSight* scene) {
   if (level.empty() || level.size() != camera.size())
     throw Error("object shape: the object has no points (or the level and camera points differ)");
   if (!(cfg.voxel > 0.0f) || !(cfg.resolution > 0.0f))
@@ -149,21 +178,32 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
     throw Error("grasp.shape: min_thickness, shadow_tolerance and floor_clearance must be >= 0");
   ObjectShape s;
   s.noise = surface_noise(camera);
-  size_grid(s, level, floor, cfg);
-  const DepthMap map = make_depth_map(camera, cfg.resolution);
   const Pose camera_from_level = frames.level_from_camera.inverse();
+  std::vector<V3> mirrored, mirrored_normals;
+  if (scene != nullptr && cfg.symmetry.enabled) {
+    const float tolerance = cfg.symmetry.tolerance + 3.0f * s.noise;
+    const SceneView view = make_scene_view(scene->points, scene->floor, camera_from_level, cfg.resolution, level,
+                                           0.5f * tolerance);
+    s.planes = find_symmetry(level, view, s.noise, cfg.symmetry);
+    mirror_points(level, normals, s.planes, view, tolerance, mirrored, mirrored_normals);
+  }
+  size_grid(s, level, mirrored, floor, cfg);
+  const DepthMap map = make_depth_map(camera, cfg.resolution);
   const float tolerance = cfg.shadow_tolerance + 2.0f * s.noise;
   const auto in_shadow = [&](const V3& p) {
     const V3 c = (camera_from_level * p.cast<double>()).cast<float>();
     return c.z() > 0.0f && map.at(c.x() / c.z(), c.y() / c.z()) < c.z() - tolerance;
   };
-  fill_unseen(Grid{s}, level, camera, frames, floor, cfg, in_shadow);
+  const std::vector<int> top = mark_surfaces(Grid{s}, level, mirrored, mirrored_normals);
+  fill_unseen(Grid{s}, camera, top, frames, floor, cfg, in_shadow);
   const auto any = [](Occupancy) { return true; };
   const auto is_free = [](Occupancy o) { return o == Occupancy::free; };
-  shell(Grid{s}, any, is_free, s.points, s.normals);
+  shell(Grid{s}, any, is_free, true, s.points, s.normals);
   const auto is_thin = [](Occupancy o) { return o == Occupancy::thin; };
-  const auto beyond_core = [](Occupancy o) { return o == Occupancy::free || o == Occupancy::assumed; };
-  shell(Grid{s}, is_thin, beyond_core, s.core_points, s.core_normals);
+  const auto beyond_core = [](Occupancy o) {
+    return o == Occupancy::free || o == Occupancy::assumed || o == Occupancy::mirrored;
+  };
+  shell(Grid{s}, is_thin, beyond_core, false, s.core_points, s.core_normals);
   return s;
 }
 

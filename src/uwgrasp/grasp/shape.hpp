@@ -8,6 +8,9 @@
 //              visible surface (gravity prior: what is seen rests on something below it, down to
 //              the seafloor) or within `min_thickness` behind a visible point (a face seen
 //              head-on, without a top in view, still has some depth);
+//   mirrored - voxels holding the seen surface mirrored about the object's symmetry planes
+//              (symmetry.hpp) where the camera could not see: the curved back of a bottle or a
+//              can, which neither rule above reaches; the space under them is assumed too;
 //   free     - everything else: seen through, or beside and behind the object where nothing of
 //              it is above.
 // The voxels within `min_thickness` behind a visible point are `thin`, the rest of the assumed
@@ -25,6 +28,7 @@
 #include <vector>
 
 #include "uwgrasp/grasp/frames.hpp"
+#include "uwgrasp/grasp/symmetry.hpp"
 
 namespace uwgrasp::grasp {
 
@@ -40,9 +44,10 @@ struct ShapeConfig {
   // noise) for the collision check: a noisy surface may lie that much deeper than its points.
   float margin_sigmas = 2.0f;
   float min_margin = 0.001f;
+  SymmetryConfig symmetry;  // the back from the object's mirror symmetry (needs the scene's view)
 };
 
-enum class Occupancy : std::uint8_t { free, seen, thin, assumed };
+enum class Occupancy : std::uint8_t { free, seen, thin, assumed, mirrored };
 
 struct ObjectShape {
   Eigen::Vector3f origin = Eigen::Vector3f::Zero();  // centre of voxel (0, 0, 0), L
@@ -54,6 +59,9 @@ struct ObjectShape {
   // The least unseen surface: thin voxels next to a free or assumed one, normals away from the
   // seen and thin mass.
   std::vector<Eigen::Vector3f> core_points, core_normals;
+  // The mirrored back (one point per voxel, L, with the seen normals mirrored) and its planes.
+  std::vector<Eigen::Vector3f> mirrored_points, mirrored_normals;
+  std::vector<MirrorPlane> planes;
   float noise = 0.0f;  // the surface's measured noise (sigma, m), see surface_noise
 
   bool empty() const { return cells.empty(); }
@@ -65,12 +73,23 @@ struct ObjectShape {
 // The seafloor in L as n.p + d = 0, |n| = 1, with the camera on the positive side.
 using FloorPlane = Eigen::Vector4f;
 
+// What the camera saw around the object, for the symmetry search: every processed point of the
+// scene (camera frame) and the seafloor plane there (n.p + d = 0), if any.
+struct SceneSight {
+  std::span<const Eigen::Vector3f> points;
+  std::optional<Eigen::Vector4f> floor;
+};
+
 // Builds the shape of an object seen by the camera of `frames`: `level` and `camera` are the
-// same points in L and in the camera frame. Throws Error for an empty object, a non-positive
-// voxel or resolution, or negative lengths.
+// same points in L and in the camera frame, `normals` their normals in L (may be empty: no
+// mirrored normals). With `scene` and cfg.symmetry on, the back is also mirrored from the
+// seen side. Throws Error for an empty object, a non-positive voxel or resolution, or
+// negative lengths.
 ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
                            std::span<const Eigen::Vector3f> camera, const Frames& frames,
-                           const std::optional<FloorPlane>& floor, const ShapeConfig& cfg);
+                           const std::optional<FloorPlane>& floor, const ShapeConfig& cfg,
+                           std::span<const Eigen::Vector3f> normals = {},
+                           const SceneSight* scene = nullptr);
 
 // The surface's noise: the median RMS distance of a point's k nearest neighbours from their
 // least-squares plane (on up to `samples` points). 0 for fewer than k points.

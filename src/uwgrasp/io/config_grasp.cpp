@@ -62,6 +62,19 @@ void visit_shape(Visitor& v, grasp::ShapeConfig& s) {
   v.field("resolution", s.resolution, 1e-4, 0.1);
   v.field("margin_sigmas", s.margin_sigmas, 0.0, 100.0);
   v.field("min_margin", s.min_margin, 0.0, 0.1);
+  v.section("symmetry", [&] {
+    grasp::SymmetryConfig& m = s.symmetry;
+    v.field("enabled", m.enabled);
+    v.field("angle_step", m.angle_step, 0.005, 0.8);
+    v.field("max_tilt", m.max_tilt, 0.0, 1.5);
+    v.field("tilt_margin", m.tilt_margin, 0.0, 10.0);
+    v.field("offset_step", m.offset_step, 1e-4, 0.05);
+    v.field("samples", m.samples, 10, 1e6);
+    v.field("tolerance", m.tolerance, 0.0, 0.1);
+    v.field("violation_weight", m.violation_weight, 0.0, 1000.0);
+    v.field("max_violations", m.max_violations, 0.0, 1.0);
+    v.field("min_support", m.min_support, 0.0, 1.0);
+  });
 }
 
 void visit_score(Visitor& v, grasp::ScoreConfig& s) {
@@ -73,6 +86,7 @@ void visit_score(Visitor& v, grasp::ScoreConfig& s) {
     v.field("candidates", s.robust.candidates, 0, 1e6);
     v.field("sigma_position", s.robust.sigma_position, 0.0, 1.0);
     v.field("sigma_angle", s.robust.sigma_angle, 0.0, kPi);
+    v.field("core_friction", s.robust.core_friction);
   });
   v.section("weights", [&] {
     v.field("normal", s.weights.normal, 0.0, 1e6);

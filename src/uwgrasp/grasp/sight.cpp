@@ -1,0 +1,82 @@
+#include "uwgrasp/grasp/sight.hpp"
+
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::grasp {
+
+namespace {
+using V3 = Eigen::Vector3f;
+using sight_detail::bin_of;
+using sight_detail::kInf;
+
+SurfaceCells make_surface_cells(std::span<const V3> object, float cell) {
+  SurfaceCells s;
+  if (object.empty()) return s;
+  V3 lo = V3::Constant(std::numeric_limits<float>::max()), hi = -lo;
+  for (const V3& p : object) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  s.cell = cell;
+  const auto dims = [&] { return ((hi - lo) / s.cell).array().floor().cast<int>() + 3; };
+  while (double(dims().prod()) > 4e6) s.cell *= 1.25f;
+  const Eigen::Array3i n = dims();
+  s.nx = n.x(), s.ny = n.y(), s.nz = n.z();
+  s.origin = lo - V3::Constant(s.cell);  // one empty cell of margin for the dilation
+  s.marked.assign(std::size_t(n.prod()), 0);
+  for (const V3& p : object) {
+    // Clamped: (p - origin) / cell may round past the last inner cell.
+    const V3 q = (p - s.origin) / s.cell;
+    const int i = std::clamp(int(q.x()), 1, s.nx - 2), j = std::clamp(int(q.y()), 1, s.ny - 2),
+              k = std::clamp(int(q.z()), 1, s.nz - 2);
+    for (int dk = -1; dk <= 1; ++dk)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di)
+          s.marked[(std::size_t(k + dk) * std::size_t(s.ny) + std::size_t(j + dj)) * std::size_t(s.nx) +
+                   std::size_t(i + di)] = 1;
+  }
+  return s;
+}
+}  // namespace
+
+bool SurfaceCells::contains(const Eigen::Vector3f& p) const {
+  if (marked.empty()) return false;
+  const V3 q = (p - origin) / cell;
+  const int i = int(std::floor(q.x())), j = int(std::floor(q.y())), k = int(std::floor(q.z()));
+  if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz) return false;
+  return marked[(std::size_t(k) * std::size_t(ny) + std::size_t(j)) * std::size_t(nx) + std::size_t(i)] != 0;
+}
+
+SceneView make_scene_view(std::span<const Eigen::Vector3f> scene, const std::optional<Eigen::Vector4f>& floor,
+                          const Pose& camera_from_level, float resolution,
+                          std::span<const Eigen::Vector3f> object, float cell) {
+  if (!(resolution > 0.0f)) throw Error("grasp.shape.resolution must be positive");
+  if (!(cell > 0.0f)) throw Error("grasp.shape.symmetry.tolerance must be positive");
+  SceneView view;
+  view.resolution = resolution, view.floor = floor, view.camera_from_level = camera_from_level;
+  view.surface = make_surface_cells(object, cell);
+  const float inverse = 1.0f / resolution;
+  int u1 = std::numeric_limits<int>::min(), v1 = u1;
+  view.u0 = view.v0 = std::numeric_limits<int>::max();
+  for (const V3& p : scene) {
+    if (!(p.z() > 0.0f)) continue;
+    const int u = bin_of(p.x() / p.z(), inverse), v = bin_of(p.y() / p.z(), inverse);
+    view.u0 = std::min(view.u0, u), view.v0 = std::min(view.v0, v), u1 = std::max(u1, u), v1 = std::max(v1, v);
+  }
+  if (u1 < view.u0) return view;  // nothing in front of the camera
+  view.width = u1 - view.u0 + 1, view.height = v1 - view.v0 + 1;
+  if (double(view.width) * double(view.height) > 5e7)
+    throw Error("grasp.shape.resolution is too fine for this scene's field of view");
+  view.near.assign(std::size_t(view.width) * std::size_t(view.height), kInf);
+  for (const V3& p : scene) {
+    if (!(p.z() > 0.0f)) continue;
+    const std::size_t k = std::size_t(bin_of(p.y() / p.z(), inverse) - view.v0) * std::size_t(view.width) +
+                          std::size_t(bin_of(p.x() / p.z(), inverse) - view.u0);
+    view.near[k] = std::min(view.near[k], p.z());
+  }
+  return view;
+}
+
+Seen classify(const SceneView& view, const Eigen::Vector3f& p_level, float tolerance) {
+  return classify_camera(view, (view.camera_from_level * p_level.cast<double>()).cast<float>(), p_level,
+                         tolerance);
+}
+
+}  // namespace uwgrasp::grasp

@@ -1,0 +1,64 @@
+#pragma once
+// The unseen back of an object from its mirror symmetry (after Bohg et al., "Mind the gap",
+// ICRA 2011). One view shows the near side; most made objects - bottles, cans, boxes, tools,
+// handles - are mirror-symmetric about a plane, and a curved back (a bottle's, a can's) is
+// where a finger that trusts the visible side alone goes through the object or closes off its
+// friction cone. A plane is a symmetry of what was seen when the seen points, mirrored about
+// it, land where the camera could not see (hidden behind the seen surface) or on the seen
+// surface itself (support), and almost never where the camera saw through to something farther
+// away or under the seafloor (violations). The plane's offset is not free: mirrored about a
+// plane in front of a curved object's widest section, the rim lands in seen free space;
+// behind it, the object's near side lands behind its own shadow on the seafloor.
+//
+// The search (what "seen" means: sight.hpp): plane normals over azimuth (every `angle_step`)
+// and tilt from the horizontal (up to `max_tilt`: objects lie in any pose), offsets across the
+// object; each scored by support - violation_weight x violations on a sample of the points. The
+// best plane is refined on finer normals and offsets (an upright one unless a tilted one scores
+// `tilt_margin` better), aligned to the mirror pairs it makes, and kept when its violations and
+// support pass the limits; with it the best plane about perpendicular to it (a box's, a
+// bottle's second symmetry).
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "uwgrasp/core/pose.hpp"
+#include "uwgrasp/grasp/sight.hpp"
+
+namespace uwgrasp::grasp {
+
+struct SymmetryConfig {
+  bool enabled = true;
+  float angle_step = 0.0873f;  // rad between coarse plane normals (5 degrees)
+  float max_tilt = 0.524f;     // rad a plane's normal may rise from the horizontal (30 degrees)
+  float tilt_margin = 0.1f;    // score a tilted plane needs above the best upright one
+  float offset_step = 0.002f;  // m between coarse plane offsets
+  std::uint32_t samples = 400;    // object points a plane is scored on
+  float tolerance = 0.003f;       // m (plus 3 sigma of the surface noise): free space, surface
+  float violation_weight = 3.0f;  // a violation costs this much support
+  float max_violations = 0.1f;    // share of the sample a kept plane may put in seen free space
+  float min_support = 0.05f;      // share of the sample it must map onto the seen surface
+};
+
+struct MirrorPlane {
+  Eigen::Vector3f normal = Eigen::Vector3f::UnitX();  // unit, L
+  float offset = 0.0f;                                // n.p = offset on the plane
+  float support = 0.0f, violations = 0.0f;            // shares of the sample
+  float score = 0.0f;
+  Eigen::Vector3f mirror(const Eigen::Vector3f& p) const { return p - 2.0f * (normal.dot(p) - offset) * normal; }
+  Eigen::Vector3f mirror_direction(const Eigen::Vector3f& v) const { return v - 2.0f * normal.dot(v) * normal; }
+};
+
+// The object's symmetry planes (none, one, or two about perpendicular ones), best first.
+// `level`: the object's points in L. `noise`: its surface noise (sigma, m). Deterministic.
+std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, const SceneView& view,
+                                       float noise, const SymmetryConfig& cfg);
+
+// The points mirrored about the planes (and about both, for two), with their normals, kept
+// where the camera could not have seen them (hidden): the object's completed back.
+void mirror_points(std::span<const Eigen::Vector3f> level, std::span<const Eigen::Vector3f> normals,
+                   std::span<const MirrorPlane> planes, const SceneView& view, float tolerance,
+                   std::vector<Eigen::Vector3f>& points, std::vector<Eigen::Vector3f>& out_normals);
+
+}  // namespace uwgrasp::grasp
