@@ -206,7 +206,8 @@ void write_judged_report(const std::string& dir, const std::vector<JudgedCaseRes
   std::vector<std::string> order;
   for (const auto& r : results) {
     if (r.tile.empty()) continue;
-    std::string object = r.c.scene;
+    // A scene file is named by its stem: its path would make a path of the figure's name.
+    std::string object = std::filesystem::path(r.c.scene).stem().string();
     for (const char* pose : {"_lying", "_turned"})
       if (object.ends_with(pose)) object.resize(object.size() - std::strlen(pose));
     if (!tiles.count(object)) order.push_back(object);

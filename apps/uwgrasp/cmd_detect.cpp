@@ -52,7 +52,21 @@ cv::Mat detection_picture(const Cloud& input, const grasp::Detection& d, const i
     pic.legend.push_back(line);
   }
   const auto wires = grasp_wires(r.grasps, r.frames, cfg.grasp.gripper);
-  return viz::draw(input, wires, pic, viz::View{}, d.object.points);
+  if (r.shape.mirrored_points.empty()) return viz::draw(input, wires, pic, viz::View{}, d.object.points);
+  // The object's back as the grasp engine completed it (mirrored about its symmetry planes),
+  // drawn in cyan behind what the camera saw.
+  Cloud shown = input;
+  make_unorganised(shown);
+  if (shown.colors.empty()) shown.colors.assign(shown.size(), Rgb8{160, 160, 160});
+  shown.normals.clear(), shown.curvature.clear(), shown.labels.clear();
+  const Pose camera_from_level = r.frames.level_from_camera.inverse();
+  for (const auto& p : r.shape.mirrored_points) {
+    shown.points.push_back((camera_from_level * p.cast<double>()).cast<float>());
+    shown.colors.push_back(Rgb8{40, 220, 230});
+  }
+  make_unorganised(shown);
+  pic.legend.push_back("cyan: the object's unseen back, mirrored about its symmetry planes");
+  return viz::draw(shown, wires, pic, viz::View{}, d.object.points);
 }
 
 void print_vec(const char* label, const Eigen::Vector3d& v, const char* unit) {
@@ -93,6 +107,15 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
               d.scene.pre.counts.input, d.scene.pre.counts.output, d.scene.info.size());
   std::printf("object: segment %zu, %zu points, centroid (%.3f, %.3f, %.3f) m\n", d.segment,
               d.object.size(), c.x(), c.y(), c.z());
+  if (!r.shape.empty()) {
+    std::printf("shape: %zu seen points, back mirrored about %zu symmetry plane%s (%zu points)",
+                d.object.size(), r.shape.planes.size(), r.shape.planes.size() == 1 ? "" : "s",
+                r.shape.mirrored_points.size());
+    for (const auto& p : r.shape.planes)
+      std::printf(", n_L (%.3f, %.3f, %.3f) %.0f %% on the seen surface", p.normal.x(), p.normal.y(),
+                  p.normal.z(), 100.0 * p.support);
+    std::printf("\n");
+  }
   std::printf("sampler %s: %zu candidates, %zu feasible (%.2f %%)\n", grasp::sampler_name(r.sampler),
               r.candidates, r.feasible(), r.candidates ? 100.0 * double(r.feasible()) / double(r.candidates) : 0.0);
   std::printf("rejected:");
