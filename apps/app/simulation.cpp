@@ -20,6 +20,8 @@ Simulation make_simulation(const io::Config& cfg, const std::string& scene, cons
   sim::check_camera(s.render.camera);
   sim::check_water(s.render.water);
   sim::check_noise(s.render.noise);
+  s.render.port = s.scene.port;
+  if (s.render.port) check_port(*s.render.port);
   s.mount = s.scene.camera_mount.value_or(cfg.grasp.frames.camera);
   s.world_from_camera = sim::camera_pose(s.scene, s.mount);
   return s;

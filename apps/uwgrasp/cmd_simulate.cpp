@@ -17,12 +17,26 @@ namespace uwgrasp::app {
 namespace {
 struct SimulateOptions {
   CommonOptions common;
-  std::string scene, water, sensor = "rgbd", out;
+  std::string scene, water, sensor = "rgbd", out, port;
 };
+
+std::string port_yaml(const FlatPort& p) {
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "# the camera housing's flat port (uwgrasp simulate --port / stereo --port)\n"
+                "distance: %.9g\nthickness: %.9g\nn_air: %.9g\nn_glass: %.9g\nn_water: %.9g\n",
+                p.distance, p.thickness, p.n_air, p.n_glass, p.n_water);
+  return text;
+}
 
 int run_simulate(const SimulateOptions& o) {
   Session session = open_session(o.common);
-  const Simulation s = make_simulation(session.config, o.scene, o.water);
+  Simulation s = make_simulation(session.config, o.scene, o.water);
+  if (!o.port.empty()) {
+    s.scene.port = io::load_port(o.port);
+    check_port(*s.scene.port);
+    s.render.port = s.scene.port;
+  }
   progress("uwgrasp simulate: building scene " + s.scene.name);
   const sim::World world(s.scene);
   const auto t0 = std::chrono::steady_clock::now();
@@ -45,6 +59,7 @@ int run_simulate(const SimulateOptions& o) {
     write_png(path("right.png"), viz::rgb_image(stereo->right, w, h));
     io::write_text(path("stereo.yaml"), io::stereo_yaml(*stereo));
   }
+  if (s.render.port) io::write_text(path("port.yaml"), port_yaml(*s.render.port));
   io::write_text(path("truth.yaml"),
                  io::truth_yaml(s.scene, truth_info(s, f.intrinsics, o.sensor, session.config.seed)));
   io::Config detect_cfg = session.config;
@@ -58,8 +73,8 @@ int run_simulate(const SimulateOptions& o) {
               s.render.noise.enabled ? "on" : "off");
   std::printf("rendered %dx%d in %.1f ms: %zu points with depth (%.1f %%)\n", w, h, ms, valid,
               100.0 * double(valid) / double(f.depth.size()));
-  std::printf("wrote %s: cloud.pcd rgb.png depth.png labels.png truth.yaml config.yaml%s\n",
-              o.out.c_str(), stereo ? " left.png right.png stereo.yaml" : "");
+  std::printf("wrote %s: cloud.pcd rgb.png depth.png labels.png truth.yaml config.yaml%s%s\n",
+              o.out.c_str(), stereo ? " left.png right.png stereo.yaml" : "", s.render.port ? " port.yaml" : "");
   std::printf("detect on it with: uwgrasp detect %s --config %s\n", path("cloud.pcd").c_str(),
               path("config.yaml").c_str());
   return 0;
@@ -76,6 +91,8 @@ void add_simulate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner
   cmd->add_option("--sensor", o->sensor, "rgbd, or stereo (also writes left/right images)")
       ->check(CLI::IsMember({"rgbd", "stereo"}));
   cmd->add_option("--out", o->out, "Output directory")->required();
+  cmd->add_option("--port", o->port, "The cameras behind this flat port (a port .yaml: distance, thickness, "
+                                     "n_air, n_glass, n_water)");
   add_common(*cmd, o->common);
   runners.emplace_back(cmd, [o] { return run_simulate(*o); });
 }

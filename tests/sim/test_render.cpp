@@ -215,3 +215,47 @@ TEST(Render, StereoPairIsTheLeftViewShiftedByTheBaseline) {
 }
 
 }  // namespace
+
+namespace {
+// A small ball off the optical axis, seen through a flat port: its image centre lies where the
+// port's inverse (the in-air ray that sees its centre) projects, farther from the image centre
+// than in open water (the port narrows the field of view, about by n_water).
+TEST(Render, ThroughAFlatPortTheImageIsWhereSnellSendsIt) {
+  Scene s;
+  s.name = "ball";
+  s.seafloor.enabled = false;
+  // Camera looking along W +x: C = (-W y, -W z, W x).
+  const Eigen::Vector3d centre_c(0.25, -0.15, 1.2);
+  Pose p = Pose::Identity();
+  p.translation() = Eigen::Vector3d(centre_c.z(), -centre_c.x(), -centre_c.y());
+  s.objects.push_back({"ball", {{Shape{.kind = ShapeKind::sphere, .radius = 0.02}, Pose::Identity()}}, p,
+                       {200, 200, 200}, true});
+  const World w(s);
+  RenderConfig cfg = perfect();
+  const auto centre_pixel = [&](const RenderConfig& c) {
+    const Frame f = render_rgbd(w, camera_looking_along_x(), c, 1);
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    int n = 0;
+    for (int v = 0; v < f.intrinsics.height; ++v)
+      for (int u = 0; u < f.intrinsics.width; ++u)
+        if (f.labels[std::size_t(v) * f.intrinsics.width + u] == kLabelFirstObject) sum += Eigen::Vector2d(u, v), ++n;
+    EXPECT_GT(n, 20);
+    return std::make_pair(Eigen::Vector2d(sum / n), f);
+  };
+  const auto [open, f0] = centre_pixel(cfg);
+  const Intrinsics k = f0.intrinsics;
+  EXPECT_LT((open - k.project(centre_c)).norm(), 0.5);
+  cfg.port = FlatPort{0.02, 0.012, 1.0, 1.49, 1.34};
+  const auto [ported, f1] = centre_pixel(cfg);
+  const Eigen::Vector3d d = *direction_to(*cfg.port, centre_c);
+  EXPECT_LT((ported - k.project(d)).norm(), 0.5) << ported.transpose() << " vs " << k.project(d).transpose();
+  // Refraction bends the ray towards the axis in water: the ball appears farther out.
+  const Eigen::Vector2d c(k.cx, k.cy);
+  EXPECT_GT((ported - c).norm(), 1.2 * (open - c).norm());
+  // The RGB-D cloud stays the true surface: the ball's points lie on it.
+  for (std::size_t i = 0; i < f1.labels.size(); ++i) {
+    if (f1.labels[i] != kLabelFirstObject || !std::isfinite(f1.cloud.points[i].x())) continue;
+    EXPECT_NEAR((f1.cloud.points[i].cast<double>() - centre_c).norm(), 0.02, 2e-4);
+  }
+}
+}  // namespace

@@ -146,6 +146,17 @@ sim::WaterConfig water(const Ctx& c, const YAML::Node& n, const std::string& pat
   return w;
 }
 
+FlatPort port(const Ctx& c, const YAML::Node& n, const std::string& path) {
+  c.keys(n, path, {"distance", "thickness", "n_air", "n_glass", "n_water"});
+  FlatPort p;
+  if (n["distance"]) p.distance = c.num(n["distance"], path + ".distance", 0, 10);
+  if (n["thickness"]) p.thickness = c.num(n["thickness"], path + ".thickness", 0, 1);
+  if (n["n_air"]) p.n_air = c.num(n["n_air"], path + ".n_air", 1, 3);
+  if (n["n_glass"]) p.n_glass = c.num(n["n_glass"], path + ".n_glass", 1, 3);
+  if (n["n_water"]) p.n_water = c.num(n["n_water"], path + ".n_water", 1, 3);
+  return p;
+}
+
 void seafloor(const Ctx& c, const YAML::Node& n, sim::Seafloor& s) {
   c.keys(n, "seafloor", {"enabled", "size", "color", "texture"});
   if (n["enabled"]) s.enabled = c.flag(n["enabled"], "seafloor.enabled");
@@ -210,7 +221,7 @@ sim::Scene parse_scene(const std::string& text, const std::string& source, const
   const Ctx c{source, base};
   const YAML::Node root = load_yaml(text, source);
   // truth.yaml adds camera, noise, labels, sensor and seed: it stays a readable scene.
-  c.keys(root, "", {"name", "seafloor", "vehicle", "camera_mount", "water", "objects", "camera",
+  c.keys(root, "", {"name", "seafloor", "vehicle", "camera_mount", "water", "port", "objects", "camera",
                     "noise", "labels", "sensor", "seed", "uwgrasp_version"});
   sim::Scene s;
   s.name = root["name"] ? c.text(root["name"], "name") : fs::path(source).stem().string();
@@ -221,6 +232,7 @@ sim::Scene parse_scene(const std::string& text, const std::string& source, const
   }
   if (root["camera_mount"]) s.camera_mount = c.mount(root["camera_mount"], "camera_mount");
   if (root["water"]) s.water = water(c, root["water"], "water");
+  if (root["port"]) s.port = port(c, root["port"], "port");
   if (const YAML::Node objs = root["objects"]) {
     if (!objs.IsSequence()) c.fail("objects", "expected a list");
     for (std::size_t i = 0; i < objs.size(); ++i)
@@ -232,6 +244,13 @@ sim::Scene parse_scene(const std::string& text, const std::string& source, const
     throw Error(source + ": " + e.what());
   }
   return s;
+}
+
+FlatPort load_port(const std::string& path) {
+  const Ctx c{path, fs::path(path).parent_path().string()};
+  const YAML::Node root = load_yaml(read_file(path, "port file"), path);
+  if (!root.IsMap()) c.fail("", "expected distance, thickness, n_air, n_glass, n_water");
+  return port(c, root, "port");
 }
 
 sim::Scene load_scene(const std::string& name_or_path) {

@@ -8,6 +8,7 @@
 //   vehicle: {position: [-0.9, 0, 0.5], rpy: [0, 0, 0]}     # body frame in W (z up)
 //   camera_mount: {position: [0.2, 0, 0], rpy: [0, -0.6, 0]}  # optional, else grasp.frames.camera
 //   water: {preset: coastal, attenuation: [0.6, 0.4, 0.55]}   # optional, any field of WaterConfig
+//   port: {distance: 0.02, thickness: 0.012, n_glass: 1.49, n_water: 1.34}  # optional flat port
 //   objects:
 //     - name: handle
 //       color: [210, 25, 25]
@@ -31,6 +32,9 @@ namespace uwgrasp::io {
 // (e.g. "objects[1].parts[0].size") for unknown keys, wrong types and impossible values.
 sim::Scene load_scene(const std::string& name_or_path);
 sim::Scene parse_scene(const std::string& yaml, const std::string& source, const std::string& base_dir);
+// A flat port file (`simulate --port`, `stereo --port`): the keys of the scene's `port` block at
+// its top level. Throws Error naming the file and key.
+FlatPort load_port(const std::string& path);
 
 // What truth.yaml records besides the scene.
 struct TruthInfo {

@@ -110,6 +110,13 @@ std::string truth_yaml(const sim::Scene& s, const TruthInfo& t) {
   seq(e, t.camera_mount.rpy);
   e << YAML::EndMap << YAML::Key << "water" << YAML::Value;
   water(e, t.water);
+  if (s.port) {
+    const FlatPort& p = *s.port;
+    e << YAML::Key << "port" << YAML::Value << YAML::BeginMap << YAML::Key << "distance" << YAML::Value
+      << shortest(p.distance) << YAML::Key << "thickness" << YAML::Value << shortest(p.thickness) << YAML::Key
+      << "n_air" << YAML::Value << shortest(p.n_air) << YAML::Key << "n_glass" << YAML::Value
+      << shortest(p.n_glass) << YAML::Key << "n_water" << YAML::Value << shortest(p.n_water) << YAML::EndMap;
+  }
   e << YAML::Key << "noise" << YAML::Value << YAML::BeginMap << YAML::Key << "enabled" << YAML::Value
     << t.noise.enabled << YAML::Key << "sigma0" << YAML::Value << shortest(t.noise.sigma0)
     << YAML::Key << "sigma_k" << YAML::Value << shortest(t.noise.sigma_k) << YAML::EndMap;

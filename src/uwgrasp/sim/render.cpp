@@ -65,25 +65,47 @@ Pixel shade(const Hit& h, const Eigen::Vector3f& o, const Eigen::Vector3f& d, do
   return px;
 }
 
-// Traces and shades row v of the image seen from camera pose `wc`.
+// A pixel's primary ray in C: from the camera centre, or, behind a flat port, from the glass's
+// outer face in its refracted direction (z = 1 either way, so t along it is the depth gained).
+struct PrimaryRay {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero(), direction = Eigen::Vector3d::UnitZ();
+  bool valid = true;  // false: totally reflected inside the port
+};
+PrimaryRay primary_ray(const Intrinsics& k, const std::optional<FlatPort>& port, int u, int v) {
+  const Eigen::Vector3d ray = k.ray(u, v);
+  if (!port) return {Eigen::Vector3d::Zero(), ray, true};
+  const auto out = refract_through_port(*port, ray);
+  if (!out) return {Eigen::Vector3d::Zero(), ray, false};
+  return {out->origin, out->direction, true};
+}
+
+// Traces and shades row v of the image seen from camera pose `wc`; `out(u, i, pixel, ray)`.
 template <class Out>
 void render_row(const World& world, const SnowScene& snow, const Pose& wc, const Intrinsics& k,
                 int v, const RenderConfig& cfg, std::uint64_t seed, Out out) {
-  const Eigen::Vector3f o = wc.translation().cast<float>();
   const Eigen::Matrix3f R = wc.linear().cast<float>();
+  std::vector<PrimaryRay> rays(k.width);
+  std::vector<Eigen::Vector3f> origins(cfg.port ? k.width : 1, wc.translation().cast<float>());
   std::vector<Eigen::Vector3f> dirs(k.width);
   std::vector<Hit> hits(k.width);
-  for (int u = 0; u < k.width; ++u) dirs[u] = R * k.ray(u, v).cast<float>();  // z = 1 in C
-  trace(world, snow, o, dirs, kFar, hits);
+  for (int u = 0; u < k.width; ++u) {
+    rays[u] = primary_ray(k, cfg.port, u, v);
+    dirs[u] = R * rays[u].direction.cast<float>();
+    if (cfg.port) origins[u] = (wc * rays[u].origin).cast<float>();
+  }
+  trace(world, snow, origins, dirs, kFar, hits);
   const Shading sh{cfg, std::cos(cfg.noise.grazing_angle)};
   for (int u = 0; u < k.width; ++u) {
     const std::uint64_t i = static_cast<std::uint64_t>(v) * k.width + u;
-    out(u, i, shade(hits[u], o, dirs[u], k.ray(u, v).norm(), i, sh, seed));
+    if (!rays[u].valid) hits[u] = Hit{};  // no light reaches this pixel through the port
+    const Eigen::Vector3f& o = origins[origins.size() == 1 ? 0 : std::size_t(u)];
+    out(u, i, shade(hits[u], o, dirs[u], rays[u].direction.norm(), i, sh, seed), rays[u]);
   }
 }
 
 void check(const RenderConfig& cfg, const Pose& wc) {
   check_camera(cfg.camera);
+  if (cfg.port) check_port(*cfg.port);
   check_water(cfg.water);
   check_noise(cfg.noise);
   if (!wc.matrix().allFinite()) throw Error("sim: camera pose is not finite");
@@ -118,12 +140,14 @@ Frame render_rgbd(const World& world, const Pose& wc, const RenderConfig& cfg, s
   f.cloud.height = static_cast<std::uint32_t>(k.height);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for_rows(k.height, [&](int v) {
-    render_row(world, snow, wc, k, v, cfg, seed, [&](int u, std::uint64_t i, const Pixel& px) {
+    render_row(world, snow, wc, k, v, cfg, seed, [&](int, std::uint64_t i, const Pixel& px, const PrimaryRay& ray) {
       f.rgb[i] = {to8(px.color.x()), to8(px.color.y()), to8(px.color.z())};
       f.labels[i] = px.label;
-      const double mm = std::round(px.z * 1000.0);
+      // The measured point along the pixel's ray (through the port, if any): its z is the depth.
+      const Eigen::Vector3d p = ray.origin + double(px.z) * ray.direction;
+      const double mm = px.z > 0 ? std::round(p.z() * 1000.0) : 0.0;
       f.depth[i] = static_cast<std::uint16_t>(std::min(mm, 65535.0));
-      f.cloud.points[i] = px.z > 0 ? (k.ray(u, v) * px.z).cast<float>() : Eigen::Vector3f(nan, nan, nan);
+      f.cloud.points[i] = px.z > 0 ? p.cast<float>() : Eigen::Vector3f(nan, nan, nan);
     });
   });
   f.cloud.colors = f.rgb;
@@ -149,7 +173,7 @@ StereoFrame render_stereo(const World& world, const Pose& wl, const RenderConfig
     auto& img = side ? s.right : s.left;
     const Pose& pose = side ? wr : wl;
     for_rows(k.height, [&](int v) {
-      render_row(world, snow, pose, k, v, cfg, seed, [&](int, std::uint64_t i, const Pixel& px) {
+      render_row(world, snow, pose, k, v, cfg, seed, [&](int, std::uint64_t i, const Pixel& px, const PrimaryRay&) {
         img[i] = {to8(px.color.x()), to8(px.color.y()), to8(px.color.z())};
       });
     });

@@ -3,10 +3,12 @@
 // through the water model of water.hpp.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "uwgrasp/core/cloud.hpp"
 #include "uwgrasp/core/pose.hpp"
+#include "uwgrasp/core/port.hpp"
 #include "uwgrasp/sim/camera.hpp"
 #include "uwgrasp/sim/scene.hpp"
 #include "uwgrasp/sim/water.hpp"
@@ -40,6 +42,10 @@ struct RenderConfig {
   CameraConfig camera;
   WaterConfig water;
   NoiseConfig noise;
+  // The cameras behind a flat port (thesis 3.2): every primary ray bends at both faces of the
+  // glass. The images then show what a real underwater camera sees; the RGB-D cloud stays the
+  // true surface (an ideal depth sensor). Unset: the camera sees the water directly.
+  std::optional<FlatPort> port;
 };
 
 struct Frame {

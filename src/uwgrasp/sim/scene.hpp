@@ -8,6 +8,7 @@
 
 #include "uwgrasp/core/cloud.hpp"
 #include "uwgrasp/core/pose.hpp"
+#include "uwgrasp/core/port.hpp"
 #include "uwgrasp/sim/mesh.hpp"
 #include "uwgrasp/sim/water.hpp"
 
@@ -62,6 +63,8 @@ struct Scene {
   std::optional<Mount> camera_mount;
   // The scene's own water (a preset with any coefficient changed); otherwise the config's sim.water.
   std::optional<WaterConfig> water{};
+  // The camera housing's flat port (thesis 3.2): set, the cameras see through it.
+  std::optional<FlatPort> port{};
 };
 
 Pose world_from_body(const VehiclePose& v);

@@ -171,7 +171,7 @@ void make_snow(const World& world, const Pose& wc, const Intrinsics& k, const Re
   rtcCommitScene(out.rtc);
 }
 
-void trace(const World& world, const SnowScene& snow, const Eigen::Vector3f& o,
+void trace(const World& world, const SnowScene& snow, std::span<const Eigen::Vector3f> origins,
            std::span<const Eigen::Vector3f> dirs, float tfar, std::span<Hit> hits) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
@@ -179,6 +179,7 @@ void trace(const World& world, const SnowScene& snow, const Eigen::Vector3f& o,
   std::vector<RTCRayHit> rays(dirs.size());
   for (std::size_t i = 0; i < dirs.size(); ++i) {
     RTCRayHit& rh = rays[i];
+    const Eigen::Vector3f& o = origins.size() == dirs.size() ? origins[i] : origins[0];
     rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
     rh.ray.dir_x = dirs[i].x(), rh.ray.dir_y = dirs[i].y(), rh.ray.dir_z = dirs[i].z();
     rh.ray.tnear = 0.0f;

@@ -63,8 +63,9 @@ struct Hit {
 // when the sensor noise is off (the perfect sensor).
 void make_snow(const World& world, const Pose& world_from_camera, const Intrinsics& k,
                const RenderConfig& cfg, std::uint64_t seed, SnowScene& out);
-// Traces rays from one origin (a row of pixels: coherent, so Embree packs them).
-void trace(const World& world, const SnowScene& snow, const Eigen::Vector3f& origin,
+// Traces rays from one origin (a row of pixels: coherent, so Embree packs them), or from one
+// origin per ray (`origins` the size of `dirs`: rays leaving a flat port).
+void trace(const World& world, const SnowScene& snow, std::span<const Eigen::Vector3f> origins,
            std::span<const Eigen::Vector3f> dirs, float tfar, std::span<Hit> hits);
 // Albedo texture factor in [1 - amp, 1 + amp] at a world point with surface normal n (hashed
 // value noise).
