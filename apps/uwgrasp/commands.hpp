@@ -10,6 +10,7 @@ namespace uwgrasp::app {
 // Registers a subcommand; `run` is called when it was chosen and returns the exit code.
 using Runner = std::function<int()>;
 void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
+void add_calibrate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_config_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_approach_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   add_experiments_command(app, runners, argc, argv);
   add_approach_command(app, runners);
   add_segment_command(app, runners);
+  add_calibrate_command(app, runners);
   add_config_command(app, runners);
   try {
     app.parse(argc, argv);

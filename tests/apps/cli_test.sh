@@ -1,27 +1,7 @@
 #!/usr/bin/env bash
 # CLI contract (INTERFACE.md): bad input -> one line on stderr naming the problem, exit 2, and no
 # output file; --help works everywhere; a good run exits 0 and writes its files.
-set -u
-BIN=$1 DATA=$2 SRC=$3
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fails=0 passes=0
-
-# expect CODE WORD -- ARGS...: exit code CODE, stderr one line containing WORD, nothing in $T/out.
-expect() {
-  local code=$1 word=$2; shift 3
-  rm -rf "$T/out"
-  "$BIN" "$@" >"$T/stdout" 2>"$T/stderr"
-  local got=$? lines
-  lines=$(wc -l <"$T/stderr")
-  if [[ $got -ne $code ]] || { [[ -n $word ]] && ! grep -q -- "$word" "$T/stderr"; } || [[ $lines -gt 1 ]] ||
-     [[ -e "$T/out" && -n "$(ls -A "$T/out" 2>/dev/null)" ]]; then
-    echo "FAIL: uwgrasp $* -> exit $got (want $code), stderr: $(cat "$T/stderr")"
-    fails=$((fails + 1))
-  else
-    passes=$((passes + 1))
-  fi
-}
+source "$(dirname "$0")/cli_lib.sh"
 
 printf 'VERSION .7\nFIELDS a b\nSIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH 1\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1\nDATA ascii\n1 2\n' >"$T/noxyz.pcd"
 printf 'VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 100\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 100\nDATA binary\n' >"$T/truncated.pcd"
@@ -189,5 +169,4 @@ fi
 if diff <("$BIN" config) <(grep -v '^ *#' "$SRC/config/default.yaml" | sed 's/  # .*$//') >/dev/null; then passes=$((passes + 1)); else
   echo "FAIL: config/default.yaml differs from 'uwgrasp config'"; fails=$((fails + 1)); fi
 
-echo "$passes passed, $fails failed"
-[[ $fails -eq 0 ]]
+finish

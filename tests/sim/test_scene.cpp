@@ -66,13 +66,18 @@ objects:
     pose: {position: [0, 0, 0], orientation_xyzw: [0, 0, 0.7071068, 0.7071068]}
     parts:
       - {shape: box, size: [0.1, 0.2, 0.3]}
+      - {shape: box, size: [0.36, 0.27, 0.005], checker: {cols: 9, rows: 6, square: 0.03}}
       - {shape: cylinder, radius: 0.01, length: 0.2, pose: {position: [0, 0, 0.3]}}
       - {shape: sphere, radius: 0.05}
       - {shape: torus, major: 0.1, radius: 0.01}
 )", "dock.yaml", ".");
   EXPECT_EQ(s.name, "dock");
   ASSERT_EQ(s.objects.size(), 1u);
-  EXPECT_EQ(s.objects[0].parts.size(), 4u);
+  EXPECT_EQ(s.objects[0].parts.size(), 5u);
+  EXPECT_EQ(s.objects[0].parts[1].shape.checker.cols, 9);
+  EXPECT_EQ(s.objects[0].parts[1].shape.checker.rows, 6);
+  EXPECT_DOUBLE_EQ(s.objects[0].parts[1].shape.checker.square, 0.03);
+  EXPECT_EQ(s.objects[0].parts[0].shape.checker.square, 0.0);
   EXPECT_NEAR(s.vehicle.rpy.z(), 0.1, 1e-12);
   ASSERT_TRUE(s.water.has_value());
   EXPECT_EQ(s.water->preset, "coastal");
@@ -88,6 +93,10 @@ TEST(SceneFile, BadInputNamesTheKey) {
   EXPECT_NE(error_of("water: {preset: muddy}").find("muddy"), std::string::npos);
   EXPECT_NE(error_of("objects: [{name: a, parts: [{shape: torus, major: 0.01, radius: 0.1}]}]").find("major"), std::string::npos);
   EXPECT_NE(error_of("objects: [{name: a, parts: []}]").find("parts"), std::string::npos);
+  EXPECT_NE(error_of("objects: [{name: a, parts: [{shape: sphere, radius: 1, checker: {cols: 9, rows: 6, square: 0.03}}]}]")
+                .find("parts[0].checker"), std::string::npos);
+  EXPECT_NE(error_of("objects: [{name: a, parts: [{shape: box, size: [1,1,1], checker: {cols: 9, rows: 6}}]}]")
+                .find("checker.square"), std::string::npos);
   EXPECT_NE(error_of("objects: [{name: a, parts: [{shape: box, size: [1,1,1]}]}, {name: a, parts: [{shape: box, size: [1,1,1]}]}]").find("duplicate"), std::string::npos);
   EXPECT_NE(error_of("seafloor: {enabled: false}").find("nothing to see"), std::string::npos);
   EXPECT_NE(error_of("objects: [{name: a, parts: [{shape: box, size: [1").find("not valid YAML"), std::string::npos);
@@ -106,7 +115,8 @@ TEST(SceneFile, MissingMeshFailsWhenTheWorldIsBuilt) {
 }
 
 TEST(Truth, TruthYamlReadsBackAsTheSameScene) {
-  const sim::Scene s = sim::builtin_scene("several");
+  sim::Scene s = sim::builtin_scene("several");
+  s.objects[0].parts.push_back({sim::Shape{.size = Eigen::Vector3d(0.36, 0.27, 0.005), .checker = {9, 6, 0.03}}, Pose::Identity()});
   io::TruthInfo t;
   t.world_from_camera = sim::camera_pose(s, Mount{});
   t.camera_mount = *s.camera_mount;
@@ -119,6 +129,9 @@ TEST(Truth, TruthYamlReadsBackAsTheSameScene) {
     EXPECT_EQ(back.objects[i].color, s.objects[i].color);
     EXPECT_EQ(back.objects[i].interest, s.objects[i].interest);
     EXPECT_TRUE(back.objects[i].pose.isApprox(s.objects[i].pose, 1e-12));
+    ASSERT_EQ(back.objects[i].parts.size(), s.objects[i].parts.size());
+    for (std::size_t j = 0; j < s.objects[i].parts.size(); ++j)
+      EXPECT_EQ(back.objects[i].parts[j].shape.checker.cols, s.objects[i].parts[j].shape.checker.cols);
     const sim::Mesh a = sim::object_mesh(s.objects[i]), b = sim::object_mesh(back.objects[i]);
     EXPECT_NEAR(sim::volume(a), sim::volume(b), 1e-12);
   }

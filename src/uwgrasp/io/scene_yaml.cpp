@@ -80,7 +80,7 @@ struct Ctx {
 };
 
 sim::Shape shape(const Ctx& c, const YAML::Node& n, const std::string& path) {
-  c.keys(n, path, {"shape", "size", "radius", "length", "major", "file", "scale", "pose"});
+  c.keys(n, path, {"shape", "size", "radius", "length", "major", "file", "scale", "pose", "checker"});
   if (!n["shape"]) c.fail(path, "missing key 'shape' (box, cylinder, sphere, torus, mesh)");
   const std::string kind = c.text(n["shape"], path + ".shape");
   sim::Shape s;
@@ -123,6 +123,15 @@ sim::SceneObject object(const Ctx& c, const YAML::Node& n, const std::string& pa
     const std::string p = path + ".parts[" + std::to_string(i) + "]";
     sim::Part part{shape(c, parts[i], p), Pose::Identity()};
     if (parts[i]["pose"]) part.pose = c.pose(parts[i]["pose"], p + ".pose");
+    if (const YAML::Node k = parts[i]["checker"]) {
+      c.keys(k, p + ".checker", {"cols", "rows", "square"});
+      if (part.shape.kind != sim::ShapeKind::box) c.fail(p + ".checker", "only a box part carries a checkerboard");
+      for (const char* key : {"cols", "rows", "square"})
+        if (!k[key]) c.fail(p + ".checker." + key, "missing");
+      part.shape.checker.cols = int(c.num(k["cols"], p + ".checker.cols", 2, 100));
+      part.shape.checker.rows = int(c.num(k["rows"], p + ".checker.rows", 2, 100));
+      part.shape.checker.square = c.num(k["square"], p + ".checker.square", 1e-4, 1.0);
+    }
     o.parts.push_back(part);
   }
   return o;

@@ -30,7 +30,14 @@ void pose(YAML::Emitter& e, const Pose& p) {
 void shape(YAML::Emitter& e, const sim::Shape& s) {
   e << YAML::Key << "shape" << YAML::Value << sim::shape_name(s.kind);
   switch (s.kind) {
-    case sim::ShapeKind::box: e << YAML::Key << "size" << YAML::Value; seq(e, s.size); break;
+    case sim::ShapeKind::box:
+      e << YAML::Key << "size" << YAML::Value;
+      seq(e, s.size);
+      if (s.checker.square > 0.0)
+        e << YAML::Key << "checker" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "cols"
+          << YAML::Value << s.checker.cols << YAML::Key << "rows" << YAML::Value << s.checker.rows << YAML::Key
+          << "square" << YAML::Value << shortest(s.checker.square) << YAML::EndMap;
+      break;
     case sim::ShapeKind::cylinder:
       e << YAML::Key << "radius" << YAML::Value << shortest(s.radius) << YAML::Key << "length"
         << YAML::Value << shortest(s.length);

@@ -41,9 +41,9 @@ Pixel shade(const Hit& h, const Eigen::Vector3f& o, const Eigen::Vector3f& d, do
   const double range = h.t * ray_norm;
   const float cos_i = std::abs(h.normal.dot(d)) / d.norm();
   const Eigen::Vector3f p = o + h.t * d;
+  const Eigen::Vector3f albedo = h.surface.checker.square > 0.0 ? checker_albedo(h.surface, p) : h.surface.albedo;
   const Eigen::Vector3d J =
-      (h.surface.albedo * texture_factor(p, h.normal, h.surface.texture) * (kAmbient + (1 - kAmbient) * cos_i))
-          .cast<double>();
+      (albedo * texture_factor(p, h.normal, h.surface.texture) * (kAmbient + (1 - kAmbient) * cos_i)).cast<double>();
   // exp(-c d) in float: the image is 8-bit, the depth does not depend on it.
   const Eigen::Array3d t =
       (-(cfg.water.attenuation.cast<float>().array() * static_cast<float>(range))).exp().cast<double>();

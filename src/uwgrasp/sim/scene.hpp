@@ -16,6 +16,14 @@ namespace uwgrasp::sim {
 
 enum class ShapeKind { box, cylinder, sphere, torus, mesh };
 
+// A calibration target printed on a box part's faces normal to its z: `cols` x `rows` inner
+// corners of squares `square` m wide, centred in the part's x-y, black and white, a white margin
+// around them (OpenCV's chessboard detector needs it). Off when square is 0.
+struct Checker {
+  int cols = 0, rows = 0;
+  double square = 0.0;
+};
+
 struct Shape {
   ShapeKind kind = ShapeKind::box;
   Eigen::Vector3d size{0.1, 0.1, 0.1};  // box: full extents, m
@@ -24,6 +32,7 @@ struct Shape {
   double major = 0.1;                   // torus: centre of the tube to the axis, around its z
   std::string file{};                   // mesh: path (any format assimp reads)
   double scale = 1.0;                   // mesh: multiplies the file's coordinates
+  Checker checker{};                    // box: a checkerboard printed on it
 };
 
 struct Part {

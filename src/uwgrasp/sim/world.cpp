@@ -92,14 +92,22 @@ World::World(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   };
   if (scene.seafloor.enabled) {
     Mesh floor = make_plane(scene.seafloor.size, scene.seafloor.size);
-    add(std::move(floor), {albedo(scene.seafloor.color), float(scene.seafloor.texture), kLabelSeafloor}, {});
+    add(std::move(floor), {.albedo = albedo(scene.seafloor.color), .texture = float(scene.seafloor.texture),
+                           .label = kLabelSeafloor}, {});
   }
   // One geometry per part: each is closed on its own, which the inside tests of query.hpp need
   // (a union of overlapping parts is not, e.g. the cross's bars meet in coincident faces).
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
-    const Surface surface{albedo(o.color), 0.08f, static_cast<std::uint16_t>(kLabelFirstObject + i)};
+    const Surface surface{.albedo = albedo(o.color), .texture = 0.08f,
+                          .label = static_cast<std::uint16_t>(kLabelFirstObject + i)};
     for (std::size_t p = 0; p < o.parts.size(); ++p) {
+      Surface part_surface = surface;
+      if (o.parts[p].shape.checker.square > 0.0) {
+        part_surface.checker = o.parts[p].shape.checker;
+        part_surface.texture = 0.0f;
+        part_surface.part_from_world = (o.pose * o.parts[p].pose).inverse().matrix().cast<float>();
+      }
       Mesh m;
       try {
         m = part_mesh(o.parts[p]);
@@ -107,7 +115,7 @@ World::World(const Scene& scene) : impl_(std::make_unique<Impl>()) {
         throw Error("object " + o.name + " part " + std::to_string(p) + ": " + e.what());
       }
       transform(m, o.pose);
-      add(std::move(m), surface, {static_cast<int>(i), static_cast<int>(p)});
+      add(std::move(m), part_surface, {static_cast<int>(i), static_cast<int>(p)});
     }
   }
   rtcCommitScene(w.rtc);
@@ -119,6 +127,16 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 const Scene& World::scene() const { return impl_->scene; }
 std::size_t World::triangles() const { return impl_->triangles; }
+
+Eigen::Vector3f checker_albedo(const Surface& s, const Eigen::Vector3f& p) {
+  const Eigen::Vector4f q = s.part_from_world * Eigen::Vector4f(p.x(), p.y(), p.z(), 1.0f);
+  const double sq = s.checker.square;
+  // Squares (cols + 1) x (rows + 1) centred on the part's origin, the first one black.
+  const double u = q.x() / sq + 0.5 * (s.checker.cols + 1), v = q.y() / sq + 0.5 * (s.checker.rows + 1);
+  const Eigen::Vector3f white(0.92f, 0.92f, 0.92f), black(0.04f, 0.04f, 0.04f);
+  if (u < 0.0 || v < 0.0 || u >= s.checker.cols + 1 || v >= s.checker.rows + 1) return white;
+  return ((int(std::floor(u)) + int(std::floor(v))) % 2 == 0) ? black : white;
+}
 
 float texture_factor(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float amp) {
   if (amp <= 0.0f) return 1.0f;
@@ -203,7 +221,7 @@ void trace(const World& world, const SnowScene& snow, std::span<const Eigen::Vec
     h.normal = Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
     if (h.normal.dot(dirs[i]) > 0) h.normal = -h.normal;
     const bool is_snow = snow.owned && rh.hit.geomID == snow.snow_geometry;
-    h.surface = is_snow ? Surface{Eigen::Vector3f(0.85f, 0.85f, 0.8f), 0.0f, kLabelSnow}
+    h.surface = is_snow ? Surface{.albedo = Eigen::Vector3f(0.85f, 0.85f, 0.8f), .texture = 0.0f, .label = kLabelSnow}
                         : w.surfaces[rh.hit.geomID];
   }
 }

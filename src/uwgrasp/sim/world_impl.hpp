@@ -15,7 +15,13 @@ struct Surface {
   Eigen::Vector3f albedo = Eigen::Vector3f::Zero();  // 0-1 per channel
   float texture = 0.0f;    // albedo modulation amplitude
   std::uint16_t label = kLabelWater;
+  // A checkerboard target (scene.hpp's Checker): its squares in the part's frame.
+  Checker checker{};
+  Eigen::Matrix4f part_from_world = Eigen::Matrix4f::Identity();
 };
+
+// The albedo of a checkerboard target at world point p: black or white squares, white margin.
+Eigen::Vector3f checker_albedo(const Surface& s, const Eigen::Vector3f& p);
 
 // What an Embree geometry is: one part of one object (each part is a closed surface of its own,
 // so inside tests and crossings are per part), or the seafloor (object -1).
