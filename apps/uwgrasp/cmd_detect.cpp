@@ -1,11 +1,13 @@
-// uwgrasp detect CLOUD: the full pipeline (thesis ch. 4-6) on a cloud in the camera optical
-// frame; prints the best grasp and per-stage times, optionally writes grasps.json.
+// uwgrasp detect CLOUD | --stereo LEFT RIGHT --calib F | --rgbd DEPTH RGB --camera F: the full
+// pipeline (thesis ch. 3-6) on a cloud in the camera optical frame, or on the one a stereo or
+// RGB-D pair gives; prints the best grasp and per-stage times, optionally writes grasps.json.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
 
 #include "app/common.hpp"
+#include "app/sensor.hpp"
 #include "commands.hpp"
 #include "app/simulation.hpp"
 #include "uwgrasp/core/error.hpp"
@@ -17,6 +19,7 @@ namespace uwgrasp::app {
 namespace {
 struct DetectOptions {
   CommonOptions common;
+  SensorOptions sensor;
   std::string cloud, object, sampler, json, png;
   std::int64_t samples = -1, top = -1;
 };
@@ -144,7 +147,8 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
 void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners) {
   auto* cmd = app.add_subcommand("detect", "Find ranked grasps on the object of interest in a cloud");
   auto o = std::make_shared<DetectOptions>();
-  cmd->add_option("CLOUD", o->cloud, ".pcd or .ply cloud in the camera optical frame")->required();
+  cmd->add_option("CLOUD", o->cloud, ".pcd or .ply cloud in the camera optical frame (or --stereo, --rgbd)");
+  add_sensor_options(*cmd, o->sensor);
   cmd->add_option("--object", o->object, "Object of interest: color:NAME, label:N, point:X,Y,Z (camera frame), nearest, largest");
   cmd->add_option("--sampler", o->sampler, "Candidate sampler")
       ->check(CLI::IsMember({"antipodal", "uniform", "normal", "surface", "auto"}));
@@ -161,19 +165,28 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
     if (o->top > 0) common.sets.push_back("grasp.score.top=" + std::to_string(o->top));
     const Session session = open_session(common);
     const io::Config& cfg = session.config;
-    progress("uwgrasp detect: loading " + o->cloud);
-    const Cloud input = io::load_cloud(o->cloud);
+    StageTimer sensor_timer;
+    std::string name = o->cloud;
+    const bool images = o->sensor.any();
+    progress("uwgrasp detect: loading " + (images ? std::string("images") : o->cloud));
+    const Cloud input = images || o->cloud.empty() ? sensor_input(o->sensor, o->cloud, cfg.stereo, sensor_timer, name)
+                                                   : io::load_cloud(o->cloud);
+    if (images) {
+      std::printf("images to cloud (ms):");
+      for (const auto& st : sensor_timer.stages()) std::printf(" %s %.1f |", st.name.c_str(), st.ms);
+      std::printf(" total %.1f\n", sensor_timer.total_ms());
+    }
     progress("uwgrasp detect: " + std::to_string(input.size()) + " points, detecting");
     const grasp::Detection d =
         grasp::detect(input, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed);
     std::printf("path: %s\n", cloud::path_summary(input, cfg.preprocess).c_str());
-    print_detection(o->cloud, d, cfg);
+    print_detection(name, d, cfg);
     if (!o->json.empty()) {
-      io::write_json(o->json, io::grasps_to_json(d, cfg, o->cloud, UWGRASP_VERSION));
+      io::write_json(o->json, io::grasps_to_json(d, cfg, name, UWGRASP_VERSION));
       std::printf("wrote %s\n", o->json.c_str());
     }
     if (!o->png.empty()) {
-      write_png(o->png, detection_picture(input, d, cfg, o->cloud));
+      write_png(o->png, detection_picture(input, d, cfg, name));
       std::printf("wrote %s\n", o->png.c_str());
     }
     return 0;

@@ -11,6 +11,7 @@ namespace uwgrasp::app {
 using Runner = std::function<int()>;
 void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_calibrate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
+void add_stereo_commands(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_config_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_approach_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);
 void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners);

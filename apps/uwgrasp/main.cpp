@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   add_approach_command(app, runners);
   add_segment_command(app, runners);
   add_calibrate_command(app, runners);
+  add_stereo_commands(app, runners);
   add_config_command(app, runners);
   try {
     app.parse(argc, argv);

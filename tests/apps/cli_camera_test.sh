@@ -28,4 +28,36 @@ if [[ -f "$S/left01.jpg" ]]; then
   # The pair of a left image with a blank right one is named and left out.
   expect 2 "blank.pgm" -- calibrate "$S/left01.jpg" --right "$T/blank.pgm" --out "$T/out/rig.yaml"
 fi
+
+# stereo and rgbd on a simulated stereo frame of the thesis scene.
+"$BIN" simulate --scene thesis --sensor stereo --out "$T/sim" >/dev/null 2>&1 || bad "simulate --sensor stereo"
+printf 'image_width: 640\nimage_height: 480\nleft: {K: [500, 0, 320, 0, 500, 240, 0, 0, 1]}\n' >"$T/nok.yaml"
+printf 'image_width: 640\nimage_height: 480\nleft: {K: [0, 0, 320, 0, 0, 240, 0, 0, 1], D: [0, 0, 0, 0, 0]}\nright: {K: [0, 0, 320, 0, 0, 240, 0, 0, 1], D: [0, 0, 0, 0, 0]}\nR: [1, 0, 0, 0, 1, 0, 0, 0, 1]\nT: [-0.1, 0, 0]\n' >"$T/singular.yaml"
+printf 'distance: 0.01\nthickness: 0.01\nn_air: 1\nn_glass: 0.5\nn_water: 1.34\n' >"$T/badport.yaml"
+S="$T/sim"
+expect 0 "" -- stereo --help
+expect 2 "small.pgm" -- stereo "$S/left.png" "$T/small.pgm" --calib "$S/stereo.yaml" --out "$T/out/c.pcd"
+expect 2 "junk.png" -- stereo "$S/left.png" "$T/junk.png" --calib "$S/stereo.yaml" --out "$T/out/c.pcd"
+expect 2 "nok.yaml" -- stereo "$S/left.png" "$S/right.png" --calib "$T/nok.yaml" --out "$T/out/c.pcd"
+expect 2 "singular" -- stereo "$S/left.png" "$S/right.png" --calib "$T/singular.yaml" --out "$T/out/c.pcd"
+expect 2 "n_glass" -- stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --port "$T/badport.yaml" --out "$T/out/c.pcd"
+expect 2 "exactly one input" -- detect "$S/cloud.pcd" --stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml"
+expect 2 "--calib" -- detect --stereo "$S/left.png" "$S/right.png"
+expect 2 "no such file" -- detect --stereo "$S/left.png" "$T/none.png" --calib "$S/stereo.yaml" --json "$T/out/g.json"
+if "$BIN" stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --out "$T/st.pcd" --png "$T/st.png" >"$T/st.txt" 2>&1 &&
+   grep -q "cloud: 640 x 480" "$T/st.txt" && grep -q "stage times" "$T/st.txt" && [[ -s $T/st.pcd && -s $T/st.png ]] &&
+   grep -q "^WIDTH 640" <(head -c 400 "$T/st.pcd") && grep -q "^HEIGHT 480" <(head -c 400 "$T/st.pcd"); then ok; else
+  bad "stereo on a simulated pair: $(tail -2 "$T/st.txt")"; fi
+if "$BIN" detect --stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --json "$T/gs.json" >"$T/ds.txt" 2>&1 &&
+   grep -q "images to cloud" "$T/ds.txt" && grep -q "best grasp" "$T/ds.txt" && grep -q '"grasps"' "$T/gs.json"; then ok; else
+  bad "detect --stereo: $(tail -2 "$T/ds.txt")"; fi
+# rgbd: the simulated depth and colour with a camera file made from the simulated intrinsics.
+printf 'image_width: 640\nimage_height: 480\ncamera_matrix: {rows: 3, cols: 3, data: [554.3827128226441, 0, 319.5, 0, 554.3827128226441, 239.5, 0, 0, 1]}\ndistortion_model: plumb_bob\ndistortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n' >"$T/cam.yaml"
+expect 0 "" -- rgbd --help
+expect 2 "rgb.png" -- rgbd "$S/rgb.png" "$S/rgb.png" --camera "$T/cam.yaml" --out "$T/out/c.pcd"
+expect 2 "small.pgm" -- rgbd "$S/depth.png" "$T/small.pgm" --camera "$T/cam.yaml" --out "$T/out/c.pcd"
+if "$BIN" rgbd "$S/depth.png" "$S/rgb.png" --camera "$T/cam.yaml" --out "$T/rg.pcd" >"$T/rg.txt" 2>&1 &&
+   grep -q "cloud: 640 x 480" "$T/rg.txt" && [[ -s $T/rg.pcd ]]; then ok; else bad "rgbd: $(tail -2 "$T/rg.txt")"; fi
+if "$BIN" detect --rgbd "$S/depth.png" "$S/rgb.png" --camera "$T/cam.yaml" >"$T/dr.txt" 2>&1 &&
+   grep -q "best grasp" "$T/dr.txt"; then ok; else bad "detect --rgbd: $(tail -2 "$T/dr.txt")"; fi
 finish

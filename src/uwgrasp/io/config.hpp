@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "uwgrasp/camera/dense.hpp"
 #include "uwgrasp/cloud/preprocess.hpp"
 #include "uwgrasp/grasp/detector.hpp"
 #include "uwgrasp/segment/pipeline.hpp"
@@ -35,6 +36,7 @@ struct VehicleConfig {
 struct Config {
   std::uint64_t seed = 1;      // every random choice derives from it
   std::uint32_t threads = 0;   // 0: all cores
+  camera::DenseConfig stereo;  // stereo pairs to clouds (stereo, detect --stereo)
   cloud::PreprocessConfig preprocess;
   segment::SegmentConfig segment;
   grasp::GraspConfig grasp;

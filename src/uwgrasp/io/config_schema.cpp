@@ -91,6 +91,7 @@ void visit_segment(Visitor& v, segment::SegmentConfig& c) {
 void visit(Visitor& v, Config& c) {
   v.field("seed", c.seed);
   v.field("threads", c.threads, 0, 4096);
+  v.section("stereo", [&] { visit_stereo(v, c.stereo); });
   v.section("preprocess", [&] { visit_preprocess(v, c.preprocess); });
   v.section("segment", [&] { visit_segment(v, c.segment); });
   v.section("grasp", [&] { visit_grasp(v, c.grasp); });

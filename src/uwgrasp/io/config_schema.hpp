@@ -47,6 +47,7 @@ std::string shortest(double v);
 
 void visit_grasp(Visitor& v, grasp::GraspConfig& c);
 void visit_sim(Visitor& v, SimConfig& c);
+void visit_stereo(Visitor& v, camera::DenseConfig& c);
 void visit_vehicle(Visitor& v, VehicleConfig& c);
 
 void visit(Visitor& v, Config& c);

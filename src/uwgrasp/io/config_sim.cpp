@@ -1,4 +1,5 @@
-// The sim section of the config schema (virtual camera, water preset, depth-sensor noise).
+// The sim section of the config schema (virtual camera, water preset, depth-sensor noise), and
+// the stereo section (the real stereo matcher that turns pairs into clouds).
 #include <numbers>
 
 #include "uwgrasp/io/config_schema.hpp"
@@ -23,6 +24,20 @@ void visit_sim(Visitor& v, SimConfig& c) {
     v.field("grazing_angle", c.noise.grazing_angle, 1e-3, kPi / 2);
     v.field("dark_threshold", c.noise.dark_threshold, 0.0, 0.999);
   });
+}
+
+void visit_stereo(Visitor& v, camera::DenseConfig& c) {
+  v.field("min_range", c.min_range, 1e-3, 1000.0);
+  v.field("max_range", c.max_range, 1e-3, 1000.0);
+  v.field("max_disparities", c.max_disparities, 16, 1024);
+  v.field("block_size", c.block_size, 1, 21);
+  v.field("uniqueness", c.uniqueness, 0, 100);
+  v.field("left_right_check", c.left_right_check);
+  v.field("lr_max_diff", c.lr_max_diff, 0, 64);
+  v.field("speckle_window", c.speckle_window, 0, 100000);
+  v.field("speckle_range", c.speckle_range, 0, 64);
+  v.choice("mode", c.mode, {"3way", "sgbm", "hh"});
+  v.field("port_reference", c.port_reference, 1e-3, 1000.0);
 }
 
 }  // namespace uwgrasp::io

@@ -1,0 +1,135 @@
+#include "app/sensor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "uwgrasp/camera/files.hpp"
+#include "uwgrasp/camera/rgbd.hpp"
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/io/scene_yaml.hpp"
+
+namespace uwgrasp::app {
+
+namespace {
+cv::Mat read_any(const std::string& path, int flags) {
+  if (!std::filesystem::is_regular_file(path)) throw Error(path + ": no such file");
+  cv::Mat m;
+  try {
+    m = cv::imread(path, flags);
+  } catch (const cv::Exception&) {
+    m.release();
+  }
+  if (m.empty()) throw Error(path + ": cannot read the image (not an image OpenCV reads, or truncated)");
+  return m;
+}
+
+std::string rig_summary(const camera::Rectification& r, bool port) {
+  char line[256];
+  std::snprintf(line, sizeof line, "rectified f %.1f px, baseline %.4f m, disparities %d-%d px (%.2f-%.2f m)%s",
+                r.camera.fx, r.baseline, r.min_disparity, r.min_disparity + r.num_disparities - 1,
+                r.camera.fx * r.baseline / std::max(1, r.min_disparity + r.num_disparities - 1),
+                r.camera.fx * r.baseline / std::max(1, r.min_disparity), port ? ", flat port by Pinax" : "");
+  return line;
+}
+}  // namespace
+
+void add_sensor_options(CLI::App& cmd, SensorOptions& o) {
+  cmd.add_option("--stereo", o.stereo, "A stereo pair LEFT RIGHT instead of a cloud (needs --calib)")->expected(2);
+  cmd.add_option("--rgbd", o.rgbd, "A depth image and its registered colour image DEPTH RGB (needs --camera)")
+      ->expected(2);
+  cmd.add_option("--calib", o.calib, "The stereo rig's calibration (uwgrasp's stereo file or OpenCV's)");
+  cmd.add_option("--camera", o.camera, "The RGB-D camera's calibration (ROS camera_info or OpenCV YAML)");
+  cmd.add_option("--port", o.port, "The cameras sit behind this flat port (port.yaml): Pinax corrects it");
+}
+
+cv::Mat read_image(const std::string& path) {
+  cv::Mat m = read_any(path, cv::IMREAD_UNCHANGED);
+  if (m.depth() != CV_8U) throw Error(path + ": the stereo matcher takes 8-bit images");
+  if (m.channels() == 4) cv::cvtColor(m, m, cv::COLOR_BGRA2BGR);
+  if (m.channels() != 1 && m.channels() != 3) throw Error(path + ": expected a grey or colour image");
+  return m;
+}
+
+cv::Mat read_depth(const std::string& path) {
+  cv::Mat m = read_any(path, cv::IMREAD_ANYDEPTH);
+  if (m.type() != CV_16UC1 && m.type() != CV_32FC1)
+    throw Error(path + ": depth must be one channel of 16-bit millimetres or 32-bit float metres");
+  return m;
+}
+
+StereoCloud stereo_cloud(const std::string& left, const std::string& right, const std::string& calib,
+                         const std::string& port, const camera::DenseConfig& cfg, StageTimer& timer) {
+  if (calib.empty()) throw Error("--stereo needs --calib STEREO.yaml, the rig's calibration");
+  timer.start("read");
+  const camera::StereoRig rig = camera::read_stereo(calib);
+  std::optional<FlatPort> flat;
+  if (!port.empty()) flat = io::load_port(port);
+  const cv::Mat l = read_image(left), r = read_image(right);
+  if (l.size() != r.size()) throw Error(right + ": " + std::to_string(r.cols) + " x " + std::to_string(r.rows) +
+                                        ", but " + left + " is " + std::to_string(l.cols) + " x " + std::to_string(l.rows));
+  timer.start("rectify maps");
+  const camera::Rectification rect = camera::rectify(rig, cfg, flat);
+  StereoCloud out;
+  out.summary = rig_summary(rect, flat.has_value());
+  out.frame = camera::dense_stereo(l, r, rect, cfg, left + " and " + right, &timer);
+  return out;
+}
+
+Cloud rgbd_cloud(const std::string& depth, const std::string& rgb, const std::string& camera_file, StageTimer& timer) {
+  if (camera_file.empty()) throw Error("--rgbd needs --camera CAM.yaml, the depth camera's calibration");
+  timer.start("read");
+  const camera::Pinhole cam = camera::read_camera(camera_file);
+  const cv::Mat d = read_depth(depth), c = read_image(rgb);
+  timer.start("cloud");
+  Cloud out = camera::rgbd_cloud(d, c, cam, depth + " and " + rgb);
+  timer.stop();
+  return out;
+}
+
+cv::Mat disparity_picture(const camera::DenseFrame& f, const std::string& title) {
+  const cv::Mat& d = f.disparity;
+  double lo = 1e9, hi = 0.0;
+  for (int v = 0; v < d.rows; ++v)
+    for (int u = 0; u < d.cols; ++u)
+      if (const float x = d.at<float>(v, u); std::isfinite(x)) lo = std::min(lo, double(x)), hi = std::max(hi, double(x));
+  cv::Mat grey(d.size(), CV_8UC1, cv::Scalar(0)), colour, left;
+  for (int v = 0; v < d.rows; ++v)
+    for (int u = 0; u < d.cols; ++u)
+      if (const float x = d.at<float>(v, u); std::isfinite(x))
+        grey.at<std::uint8_t>(v, u) = std::uint8_t(30 + 225 * (x - lo) / std::max(hi - lo, 1e-6));
+  cv::applyColorMap(grey, colour, cv::COLORMAP_TURBO);
+  colour.setTo(cv::Scalar(0, 0, 0), grey == 0);
+  if (f.left_rectified.channels() == 1) cv::cvtColor(f.left_rectified, left, cv::COLOR_GRAY2BGR);
+  else left = f.left_rectified;
+  const int header = 34;
+  cv::Mat out(d.rows + header, 2 * d.cols, CV_8UC3, cv::Scalar(255, 255, 255));
+  left.copyTo(out(cv::Rect(0, header, d.cols, d.rows)));
+  colour.copyTo(out(cv::Rect(d.cols, header, d.cols, d.rows)));
+  std::size_t matched = 0;
+  for (const auto& p : f.cloud.points) matched += std::isfinite(p.z());
+  char line[256];
+  std::snprintf(line, sizeof line, "%s: rectified left | disparity %.1f-%.1f px (warm near), %.0f %% matched", title.c_str(),
+                hi >= lo ? lo : 0.0, hi, 100.0 * double(matched) / double(std::max<std::size_t>(1, f.cloud.size())));
+  cv::putText(out, line, {8, 23}, cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  return out;
+}
+
+Cloud sensor_input(const SensorOptions& o, const std::string& cloud_file, const camera::DenseConfig& cfg,
+                   StageTimer& timer, std::string& name) {
+  const int inputs = int(!cloud_file.empty()) + int(!o.stereo.empty()) + int(!o.rgbd.empty());
+  if (inputs != 1) throw Error("give exactly one input: a cloud file, --stereo LEFT RIGHT or --rgbd DEPTH RGB");
+  if (!o.stereo.empty()) {
+    name = o.stereo[0];
+    StereoCloud s = stereo_cloud(o.stereo[0], o.stereo[1], o.calib, o.port, cfg, timer);
+    std::printf("stereo: %s\n", s.summary.c_str());
+    return std::move(s.frame.cloud);
+  }
+  name = o.rgbd[1];
+  return rgbd_cloud(o.rgbd[0], o.rgbd[1], o.camera, timer);
+}
+
+}  // namespace uwgrasp::app

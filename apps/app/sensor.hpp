@@ -1,0 +1,52 @@
+#pragma once
+// Images to clouds for the CLI: a stereo pair with its rig's calibration (optionally behind a
+// flat port), or a depth + colour pair with its camera's, read from files and turned into the
+// organised cloud the pipeline takes (thesis ch. 3).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "uwgrasp/camera/dense.hpp"
+#include "uwgrasp/core/cloud.hpp"
+#include "uwgrasp/core/timer.hpp"
+
+namespace uwgrasp::app {
+
+struct SensorOptions {
+  std::vector<std::string> stereo;  // LEFT RIGHT
+  std::vector<std::string> rgbd;    // DEPTH RGB
+  std::string calib, camera, port;
+  bool any() const { return !stereo.empty() || !rgbd.empty(); }
+};
+
+// Adds --stereo LEFT RIGHT, --rgbd DEPTH RGB, --calib, --camera and --port.
+void add_sensor_options(CLI::App& cmd, SensorOptions& o);
+
+// Reads an image for the stereo matcher (8-bit grey or BGR) or a depth image (16-bit mm or
+// 32-bit float m); throws Error naming the file when it cannot be read or has another type.
+cv::Mat read_image(const std::string& path);
+cv::Mat read_depth(const std::string& path);
+
+struct StereoCloud {
+  camera::DenseFrame frame;
+  std::string summary;  // the rig, the port, the disparities searched
+};
+// LEFT RIGHT with the rig of `calib` (and the port of `port`, if not empty): rectify, match,
+// triangulate. Times the stages read, rectify, match and cloud into `timer`.
+StereoCloud stereo_cloud(const std::string& left, const std::string& right, const std::string& calib,
+                         const std::string& port, const camera::DenseConfig& cfg, StageTimer& timer);
+// DEPTH RGB with the camera of `camera_file`.
+Cloud rgbd_cloud(const std::string& depth, const std::string& rgb, const std::string& camera_file, StageTimer& timer);
+
+// The rectified left image beside its disparity (near warm, far cool, no match black), with a
+// title line: what `stereo --png` writes.
+cv::Mat disparity_picture(const camera::DenseFrame& f, const std::string& title);
+
+// The cloud of whichever input the options name (exactly one of a cloud file, --stereo, --rgbd);
+// `name` is set to what to call it in output.
+Cloud sensor_input(const SensorOptions& o, const std::string& cloud_file, const camera::DenseConfig& cfg,
+                   StageTimer& timer, std::string& name);
+
+}  // namespace uwgrasp::app
