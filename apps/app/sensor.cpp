@@ -118,6 +118,38 @@ cv::Mat disparity_picture(const camera::DenseFrame& f, const std::string& title)
   return out;
 }
 
+cv::Mat matches_picture(const cv::Mat& left, const cv::Mat& right, const camera::SparseResult& r,
+                        const std::string& title) {
+  const int header = 34, w = left.cols;
+  cv::Mat out(left.rows + header, 2 * w, CV_8UC3, cv::Scalar(255, 255, 255)), l, rr;
+  if (left.channels() == 1) cv::cvtColor(left, l, cv::COLOR_GRAY2BGR), cv::cvtColor(right, rr, cv::COLOR_GRAY2BGR);
+  else l = left, rr = right;
+  l.copyTo(out(cv::Rect(0, header, w, left.rows)));
+  rr.copyTo(out(cv::Rect(w, header, w, left.rows)));
+  double lo = 1e9, hi = 0.0;
+  for (const auto& m : r.matches) lo = std::min(lo, m.point.z()), hi = std::max(hi, m.point.z());
+  cv::Mat ramp(1, 256, CV_8UC1), colours;
+  for (int i = 0; i < 256; ++i) ramp.at<std::uint8_t>(i) = std::uint8_t(i);
+  cv::applyColorMap(ramp, colours, cv::COLORMAP_TURBO);
+  // Every match a dot in both images; a line joins one in `step` (all of them hide the images).
+  const std::size_t step = std::max<std::size_t>(1, r.matches.size() / 150);
+  for (std::size_t i = 0; i < r.matches.size(); ++i) {
+    const auto& m = r.matches[i];
+    const int k = int(255 * (1.0 - (m.point.z() - lo) / std::max(hi - lo, 1e-9)));  // warm near
+    const cv::Vec3b c = colours.at<cv::Vec3b>(k);
+    const cv::Point a(int(std::lround(m.left.x())), int(std::lround(m.left.y())) + header);
+    const cv::Point b(int(std::lround(m.right.x())) + w, int(std::lround(m.right.y())) + header);
+    if (i % step == 0) cv::line(out, a, b, cv::Scalar(c[0], c[1], c[2]), 1, cv::LINE_AA);
+    cv::circle(out, a, 2, cv::Scalar(c[0], c[1], c[2]), -1, cv::LINE_AA);
+    cv::circle(out, b, 2, cv::Scalar(c[0], c[1], c[2]), -1, cv::LINE_AA);
+  }
+  char line[256];
+  std::snprintf(line, sizeof line, "%s: %zu matches triangulated, depth %.2f-%.2f m (warm near)", title.c_str(),
+                r.matches.size(), r.matches.empty() ? 0.0 : lo, hi);
+  cv::putText(out, line, {8, 23}, cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  return out;
+}
+
 Cloud sensor_input(const SensorOptions& o, const std::string& cloud_file, const camera::DenseConfig& cfg,
                    StageTimer& timer, std::string& name) {
   const int inputs = int(!cloud_file.empty()) + int(!o.stereo.empty()) + int(!o.rgbd.empty());

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "uwgrasp/camera/dense.hpp"
+#include "uwgrasp/camera/sparse.hpp"
 #include "uwgrasp/core/cloud.hpp"
 #include "uwgrasp/core/timer.hpp"
 
@@ -43,6 +44,10 @@ Cloud rgbd_cloud(const std::string& depth, const std::string& rgb, const std::st
 // The rectified left image beside its disparity (near warm, far cool, no match black), with a
 // title line: what `stereo --png` writes.
 cv::Mat disparity_picture(const camera::DenseFrame& f, const std::string& title);
+
+// The two images side by side with a line per triangulated match, coloured by depth.
+cv::Mat matches_picture(const cv::Mat& left, const cv::Mat& right, const camera::SparseResult& r,
+                        const std::string& title);
 
 // The cloud of whichever input the options name (exactly one of a cloud file, --stereo, --rgbd);
 // `name` is set to what to call it in output.

@@ -1,6 +1,9 @@
 // uwgrasp stereo LEFT RIGHT --calib STEREO.yaml [--port PORT.yaml] --out CLOUD.pcd [--png FILE]:
-// a stereo pair to an organised cloud in the left camera's optical frame (thesis 3.6, 3.8).
+// a stereo pair to an organised cloud in the left camera's optical frame (thesis 3.6, 3.8); with
+// --sparse, the triangulated feature matches instead (3.3-3.6.1).
 // uwgrasp rgbd DEPTH RGB --camera CAM.yaml --out CLOUD.pcd: a depth + colour pair (3.7).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -8,7 +11,10 @@
 #include "app/sensor.hpp"
 #include "app/simulation.hpp"
 #include "commands.hpp"
+#include "uwgrasp/camera/files.hpp"
+#include "uwgrasp/camera/sparse.hpp"
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/io/scene_yaml.hpp"
 #include "uwgrasp/io/pcd.hpp"
 
 namespace uwgrasp::app {
@@ -16,7 +22,8 @@ namespace uwgrasp::app {
 namespace {
 struct StereoOptions {
   CommonOptions common;
-  std::string left, right, calib, port, out, png;
+  std::string left, right, calib, port, out, png, detector = "sift";
+  bool sparse = false;
 };
 
 struct RgbdOptions {
@@ -35,8 +42,46 @@ std::size_t finite(const Cloud& c) {
   return n;
 }
 
+// Keypoints matched left to right, triangulated: an unorganised cloud coloured from the left image.
+int run_sparse(const StereoOptions& o, const io::Config& cfg) {
+  StageTimer timer;
+  timer.start("read");
+  const camera::StereoRig rig = camera::read_stereo(o.calib);
+  std::optional<FlatPort> port;
+  if (!o.port.empty()) port = io::load_port(o.port);
+  const cv::Mat l = read_image(o.left), r = read_image(o.right);
+  const camera::Triangulator tri(rig, port, cfg.stereo.port_reference);
+  camera::SparseConfig sc;
+  sc.detector = o.detector, sc.max_range = cfg.stereo.max_range;
+  timer.start("features, matching, triangulation");
+  const camera::SparseResult res = camera::sparse_stereo(l, r, tri, sc);
+  timer.stop();
+  std::printf("%s keypoints: %zu left, %zu right; ratio test %zu, cross-check %zu, epipolar (<= %.1f px) %zu, "
+              "triangulated %zu\n", o.detector.c_str(), res.left_keypoints, res.right_keypoints, res.ratio_passed,
+              res.cross_checked, sc.epipolar_px, res.epipolar_passed, res.matches.size());
+  print_times(timer);
+  if (res.matches.empty()) throw Error(o.left + " and " + o.right + ": no feature matched (nothing written)");
+  Cloud c;
+  for (const auto& m : res.matches) {
+    c.points.push_back(m.point.cast<float>());
+    const int u = int(std::lround(m.left.x())), v = int(std::lround(m.left.y()));
+    const std::uint8_t* px = l.ptr<std::uint8_t>(std::clamp(v, 0, l.rows - 1));
+    const int x = std::clamp(u, 0, l.cols - 1);
+    c.colors.push_back(l.channels() == 3 ? Rgb8{px[3 * x + 2], px[3 * x + 1], px[3 * x]} : Rgb8{px[x], px[x], px[x]});
+  }
+  c.width = std::uint32_t(c.size());
+  io::save_cloud(o.out, c);
+  std::printf("wrote %s\n", o.out.c_str());
+  if (!o.png.empty()) {
+    write_png(o.png, matches_picture(l, r, res, std::filesystem::path(o.left).filename().string()));
+    std::printf("wrote %s\n", o.png.c_str());
+  }
+  return 0;
+}
+
 int run_stereo(const StereoOptions& o) {
   const Session session = open_session(o.common);
+  if (o.sparse) return run_sparse(o, session.config);
   StageTimer timer;
   StereoCloud s = stereo_cloud(o.left, o.right, o.calib, o.port, session.config.stereo, timer);
   std::printf("stereo: %s\n", s.summary.c_str());
@@ -73,7 +118,9 @@ void add_stereo_commands(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>
   cmd->add_option("--calib", o->calib, "The rig's calibration (uwgrasp's stereo file, or OpenCV's)")->required();
   cmd->add_option("--port", o->port, "The cameras sit behind this flat port (port.yaml): Pinax corrects it");
   cmd->add_option("--out", o->out, "Organised XYZRGB cloud to write (.pcd or .ply)")->required();
-  cmd->add_option("--png", o->png, "Draw the rectified left image and the disparity here");
+  cmd->add_option("--png", o->png, "Draw the rectified left image and the disparity (or the matches) here");
+  cmd->add_flag("--sparse", o->sparse, "Triangulate matched keypoints instead of matching densely");
+  cmd->add_option("--detector", o->detector, "Keypoints for --sparse")->check(CLI::IsMember({"sift", "harris"}));
   add_common(*cmd, o->common);
   runners.emplace_back(cmd, [o] { return run_stereo(*o); });
 

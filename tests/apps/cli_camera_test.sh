@@ -51,6 +51,16 @@ if "$BIN" stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --out "$T
 if "$BIN" detect --stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --json "$T/gs.json" >"$T/ds.txt" 2>&1 &&
    grep -q "images to cloud" "$T/ds.txt" && grep -q "best grasp" "$T/ds.txt" && grep -q '"grasps"' "$T/gs.json"; then ok; else
   bad "detect --stereo: $(tail -2 "$T/ds.txt")"; fi
+if "$BIN" stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --sparse --detector harris --out "$T/sp.pcd" \
+     --png "$T/sp.png" >"$T/sp.txt" 2>&1 && grep -q "harris keypoints" "$T/sp.txt" && [[ -s $T/sp.pcd && -s $T/sp.png ]]; then
+  ok; else bad "stereo --sparse: $(tail -2 "$T/sp.txt")"; fi
+expect 2 "no feature matched" -- stereo "$T/blank.pgm" "$T/blank.pgm" --calib "$S/stereo.yaml" --sparse --out "$T/out/sp.pcd"
+# Behind a flat port: simulate through it, correct it with Pinax.
+printf 'distance: 0.02\nthickness: 0.012\nn_air: 1\nn_glass: 1.49\nn_water: 1.34\n' >"$T/port.yaml"
+if "$BIN" simulate --scene thesis --sensor stereo --port "$T/port.yaml" --out "$T/simp" >/dev/null 2>&1 &&
+   "$BIN" stereo "$T/simp/left.png" "$T/simp/right.png" --calib "$T/simp/stereo.yaml" --port "$T/simp/port.yaml" \
+     --out "$T/pp.pcd" >"$T/pp.txt" 2>&1 && grep -q "flat port by Pinax" "$T/pp.txt"; then ok; else
+  bad "stereo --port: $(tail -2 "$T/pp.txt")"; fi
 # rgbd: the simulated depth and colour with a camera file made from the simulated intrinsics.
 printf 'image_width: 640\nimage_height: 480\ncamera_matrix: {rows: 3, cols: 3, data: [554.3827128226441, 0, 319.5, 0, 554.3827128226441, 239.5, 0, 0, 1]}\ndistortion_model: plumb_bob\ndistortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n' >"$T/cam.yaml"
 expect 0 "" -- rgbd --help

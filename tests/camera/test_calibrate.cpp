@@ -2,81 +2,28 @@
 // intrinsics and baseline are exact), and the shared real pairs (OpenCV's stereo_calib sample).
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
 #include <cmath>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "uwgrasp/camera/calibrate.hpp"
 #include "uwgrasp/core/error.hpp"
-#include "uwgrasp/sim/render.hpp"
+#include "boards.hpp"
 
 namespace {
 using namespace uwgrasp;
 using namespace uwgrasp::camera;
 namespace fs = std::filesystem;
 
-// The camera at the origin of W looking along +x (W z up): optical z = W x, x = -W y, y = -W z.
-Pose camera_along_x() {
-  Pose p = Pose::Identity();
-  p.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  return p;
-}
-
-// The renderer samples each pixel once (hard, aliased edges); a real sensor integrates over the
-// pixel. Rendered at three times the size and area-averaged down, the image is what a 640 x 480
-// sensor with the third-size intrinsics sees (pixel centres map as u = (U - 1) / 3).
-cv::Mat grey_third(const std::vector<Rgb8>& rgb, int w, int h) {
-  cv::Mat m(h, w, CV_8UC1), small;
-  for (int i = 0; i < w * h; ++i) m.data[i] = rgb[std::size_t(i)].g;
-  cv::resize(m, small, cv::Size(640, 480), 0, 0, cv::INTER_AREA);
-  return small;
-}
-
-// A 9 x 6 board (3 cm squares) at `distance` in front of the camera, turned by `yaw` about W z and
-// `pitch` about W y from facing the camera, shifted across the view by (dy, dz).
-sim::Scene board_scene(double distance, double yaw, double pitch, double dy, double dz) {
-  sim::Scene s;
-  s.name = "board";
-  s.seafloor.enabled = false;
-  Pose p = Pose::Identity();
-  p.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitY()))
-                   .toRotationMatrix();  // the board's z towards the camera (W -x)
-  p.translation() = Eigen::Vector3d(distance, dy, dz);
-  sim::Shape board{.kind = sim::ShapeKind::box, .size = Eigen::Vector3d(0.36, 0.27, 0.005)};
-  board.checker = {9, 6, 0.03};
-  s.objects.push_back({"board", {{board, Pose::Identity()}}, p, {255, 255, 255}, true});
-  return s;
-}
-
 TEST(Calibrate, RenderedBoardsGiveTheSimulatedRigBack) {
-  sim::RenderConfig cfg;
-  cfg.noise.enabled = false;
-  cfg.water.attenuation.setZero();
-  cfg.water.veiling.setZero();
-  cfg.camera.width = 1920, cfg.camera.height = 1440;
+  const sim::RenderConfig cfg = test::board_render();
   std::vector<View> left, right;
-  // Distance, yaw, pitch, shift: the board near the image's centre and corners, turned up to 35
-  // deg each way (Zhang needs the turns to separate the focal length from the distance).
-  const double poses[][5] = {{0.75, 0.0, 0.0, 0.0, 0.0},      {0.8, 0.6, 0.0, 0.05, 0.0},    {0.8, -0.6, 0.0, -0.05, 0.0},
-                             {0.8, 0.0, 0.6, 0.0, 0.04},      {0.8, 0.0, -0.6, 0.0, -0.04},  {0.9, 0.45, 0.45, 0.15, 0.1},
-                             {0.9, -0.45, 0.45, -0.15, 0.1},  {0.9, 0.45, -0.45, 0.15, -0.1}, {0.9, -0.45, -0.45, -0.15, -0.1},
-                             {1.1, 0.3, -0.3, 0.25, 0.15},    {1.1, -0.3, 0.3, -0.25, -0.15}, {1.1, 0.3, 0.3, -0.25, 0.15},
-                             {1.1, -0.3, -0.3, 0.25, -0.15},  {0.7, 0.3, 0.1, 0.0, 0.0}};
   int i = 0;
-  for (const auto& q : poses) {
-    const sim::World w(board_scene(q[0], q[1], q[2], q[3], q[4]));
-    const sim::StereoFrame f = sim::render_stereo(w, camera_along_x(), cfg, 1);
-    const int W = f.intrinsics.width, H = f.intrinsics.height;
-    const std::string n = std::to_string(i++);  // (not "L" + n: GCC 12's -Wrestrict false positive)
-    left.push_back({n, grey_third(f.left, W, H)});
-    right.push_back({n, grey_third(f.right, W, H)});
+  for (const test::BoardPose& b : test::calibration_poses()) {
+    auto [l, r] = test::render_board(b, 0.03, cfg, std::to_string(i++));
+    left.push_back(std::move(l)), right.push_back(std::move(r));
   }
-  sim::CameraConfig sensor = cfg.camera;
-  sensor.width = 640, sensor.height = 480;
-  const sim::Intrinsics k = sim::make_intrinsics(sensor);
+  const sim::Intrinsics k = test::sensor_intrinsics();
   const StereoCalibration c = calibrate_stereo(left, right, {9, 6, 0.03});
   EXPECT_TRUE(c.rejected.empty()) << c.rejected.front();
   EXPECT_LT(c.rms, 0.3);

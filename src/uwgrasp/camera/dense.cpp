@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "uwgrasp/camera/pinax.hpp"
+#include "uwgrasp/camera/triangulate.hpp"
 #include "uwgrasp/core/error.hpp"
 
 namespace uwgrasp::camera {
@@ -100,10 +101,7 @@ Rectification rectify(const StereoRig& rig, const DenseConfig& cfg, const std::o
     // Each camera by its Pinax virtual camera: x = x' + c e_z in each, so x_r' = R x_l' + T'.
     const Pinax pl = make_pinax(rig.left, *port, cfg.port_reference);
     const Pinax pr = make_pinax(rig.right, *port, cfg.port_reference);
-    StereoRig v = rig;
-    v.left = pl.virtual_camera, v.right = pr.virtual_camera;
-    v.T = rig.T + pl.centre_z * rig.R.col(2) - pr.centre_z * Eigen::Vector3d::UnitZ();
-    rectify_maps(v, r, CV_32FC1);
+    rectify_maps(virtual_rig(rig, pl, pr), r, CV_32FC1);
     // Rectified -> virtual (the maps just made) composed with virtual -> raw (Pinax's).
     cv::Mat lx, ly, rx, ry;
     cv::remap(pl.map_x, lx, r.left_map1, r.left_map2, cv::INTER_LINEAR, cv::BORDER_CONSTANT, -1);
@@ -150,8 +148,8 @@ DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectifi
   // wide); padded on the left, they are matched wherever the right camera sees them too.
   const int pad = rect.min_disparity + rect.num_disparities;
   cv::Mat pl, pr, padded;
-  cv::copyMakeBorder(gl, pl, 0, 0, pad, 0, cv::BORDER_REPLICATE);
-  cv::copyMakeBorder(gr, pr, 0, 0, pad, 0, cv::BORDER_REPLICATE);
+  cv::copyMakeBorder(gl, pl, 0, 0, pad, 0, cv::BORDER_CONSTANT, cv::Scalar(0));
+  cv::copyMakeBorder(gr, pr, 0, 0, pad, 0, cv::BORDER_CONSTANT, cv::Scalar(0));
   matcher(rect, cfg, 1)->compute(pl, pr, padded);
   raw = padded.colRange(pad, padded.cols);
   stage("cloud");

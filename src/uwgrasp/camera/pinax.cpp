@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/core/utility.hpp>
 
 #include "uwgrasp/core/error.hpp"
 
@@ -66,15 +67,17 @@ Pinax make_pinax(const Pinhole& air, const FlatPort& port, double reference) {
   p.virtual_camera = {air.width, air.height, f, f, air.cx, air.cy, {}};
   p.map_x.create(air.height, air.width, CV_32FC1);
   p.map_y.create(air.height, air.width, CV_32FC1);
-  for (int v = 0; v < air.height; ++v)
-    for (int u = 0; u < air.width; ++u) {
-      // The virtual pixel's ray from the virtual centre, to the reference depth; the raw pixel
-      // is where the real camera sees that point through the port.
-      const V3 x = V3(0, 0, p.centre_z) + V3((u - air.cx) / f, (v - air.cy) / f, 1.0) * (reference - p.centre_z);
-      const auto a = direction_to(port, x);
-      const Eigen::Vector2d raw = a ? air.project(*a) : Eigen::Vector2d(-1.0, -1.0);
-      p.map_x.at<float>(v, u) = float(raw.x()), p.map_y.at<float>(v, u) = float(raw.y());
-    }
+  cv::parallel_for_(cv::Range(0, air.height), [&](const cv::Range& rows) {
+    for (int v = rows.start; v < rows.end; ++v)
+      for (int u = 0; u < air.width; ++u) {
+        // The virtual pixel's ray from the virtual centre, to the reference depth; the raw pixel
+        // is where the real camera sees that point through the port.
+        const V3 x = V3(0, 0, p.centre_z) + V3((u - air.cx) / f, (v - air.cy) / f, 1.0) * (reference - p.centre_z);
+        const auto a = direction_to(port, x);
+        const Eigen::Vector2d raw = a ? air.project(*a) : Eigen::Vector2d(-1.0, -1.0);
+        p.map_x.at<float>(v, u) = float(raw.x()), p.map_y.at<float>(v, u) = float(raw.y());
+      }
+  });
   return p;
 }
 
