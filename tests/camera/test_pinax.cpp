@@ -66,6 +66,12 @@ std::vector<double> errors_at(double distance, const std::vector<const Triangula
 }
 
 TEST(Pinax, CorrectedTriangulationBeatsTheAirCalibrationFivefoldAtTwoMetres) {
+#if defined(__SANITIZE_ADDRESS__)
+  // 29 boards rendered at 1920 x 1440 take ~5 min instrumented; the same code paths (rendering
+  // through the port, corners, Pinax maps, triangulation) run instrumented in the tests below and
+  // in DenseStereo.BehindAFlatPortPinaxKeepsTheDepthRight. The Release suite runs this one.
+  GTEST_SKIP() << "the refraction study runs in the uninstrumented suite (too slow under ASan)";
+#endif
   // (b): Zhang's calibration from boards seen through the port, as if calibrated in the water.
   std::vector<View> left, right;
   int i = 0;
@@ -103,6 +109,15 @@ TEST(Pinax, TheMapSendsEachVirtualPixelWhereTheRawCameraSeesItsPoint) {
       ASSERT_TRUE(back.has_value());
       EXPECT_LT((*back - Eigen::Vector2d(u, v)).norm(), 1e-3) << u << " " << v;
     }
+  // Points imaged exactly through the port by both cameras: Pinax triangulates them to a few
+  // millimetres at 1-3 m; the air calibration alone misses by a quarter of the range.
+  const StereoRig rig = air_rig();
+  const Triangulator with(rig, kPort, 2.0), without(rig);
+  for (const Eigen::Vector3d& x : {Eigen::Vector3d(0.2, -0.1, 1.0), Eigen::Vector3d(-0.3, 0.2, 2.0), Eigen::Vector3d(0.5, 0.4, 3.0)}) {
+    const Eigen::Vector2d a = air.project(*direction_to(kPort, x)), b = air.project(*direction_to(kPort, rig.R * x + rig.T));
+    EXPECT_LT((*with.point(a, b) - x).norm(), 0.003 * x.z()) << x.transpose();
+    EXPECT_GT((*without.point(a, b) - x).norm(), 0.2 * x.z()) << x.transpose();
+  }
   FlatPort bad = kPort;
   bad.n_glass = 0.5;
   EXPECT_THROW(make_pinax(air, bad), Error);

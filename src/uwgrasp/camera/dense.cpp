@@ -58,15 +58,37 @@ void disparity_range(Rectification& r, const DenseConfig& cfg) {
                 std::to_string(r.camera.width) + " px wide image: raise stereo.min_range");
 }
 
-cv::Ptr<cv::StereoSGBM> matcher(const Rectification& r, const DenseConfig& cfg, int channels) {
+cv::Ptr<cv::StereoSGBM> matcher(int min_disparity, int num_disparities, const DenseConfig& cfg) {
   const int mode = cfg.mode == "sgbm" ? cv::StereoSGBM::MODE_SGBM
                    : cfg.mode == "hh" ? cv::StereoSGBM::MODE_HH
                                       : cv::StereoSGBM::MODE_SGBM_3WAY;
-  const int block = int(cfg.block_size), area = channels * block * block;
+  const int block = int(cfg.block_size), area = block * block;  // grey: one channel
   // P1, P2: the smoothness penalties for disparity steps of 1 and more (OpenCV's suggested scale).
-  return cv::StereoSGBM::create(r.min_disparity, r.num_disparities, block, 8 * area, 32 * area,
+  return cv::StereoSGBM::create(min_disparity, num_disparities, block, 8 * area, 32 * area,
                                 cfg.left_right_check ? int(cfg.lr_max_diff) : -1, 0, int(cfg.uniqueness),
                                 int(cfg.speckle_window), int(cfg.speckle_range), mode);
+}
+
+// SGBM's disparities (x16 fixed point) of the grey rectified pair matched at 1/downscale of its
+// size; `valid` is the smallest value that is a match.
+cv::Mat match(const cv::Mat& gl, const cv::Mat& gr, const Rectification& r, const DenseConfig& cfg, int& valid) {
+  const int s = int(cfg.downscale);
+  cv::Mat ml = gl, mr = gr;
+  if (s > 1) {
+    cv::resize(gl, ml, cv::Size(gl.cols / s, gl.rows / s), 0, 0, cv::INTER_AREA);
+    cv::resize(gr, mr, cv::Size(gr.cols / s, gr.rows / s), 0, 0, cv::INTER_AREA);
+  }
+  const int min_d = r.min_disparity / s;
+  const int num = ((r.min_disparity + r.num_disparities + s - 1) / s - min_d + 15) / 16 * 16;
+  // SGBM leaves the first min + num disparity columns unmatched (a band 20-30 % of the image
+  // wide); padded on the left, they are matched wherever the right camera sees them too.
+  const int pad = min_d + num;
+  cv::Mat pl, pr, padded;
+  cv::copyMakeBorder(ml, pl, 0, 0, pad, 0, cv::BORDER_CONSTANT, cv::Scalar(0));
+  cv::copyMakeBorder(mr, pr, 0, 0, pad, 0, cv::BORDER_CONSTANT, cv::Scalar(0));
+  matcher(min_d, num, cfg)->compute(pl, pr, padded);
+  valid = std::max(1, min_d * 16);
+  return padded.colRange(pad, padded.cols);
 }
 }  // namespace
 
@@ -77,6 +99,7 @@ void check(const DenseConfig& c) {
   if (c.max_disparities < 16 || c.max_disparities > 1024) fail("max_disparities", "must be in [16, 1024]");
   if (c.block_size < 1 || c.block_size > 21 || c.block_size % 2 == 0) fail("block_size", "must be odd, 1-21");
   if (c.uniqueness > 100) fail("uniqueness", "must be a percentage");
+  if (c.downscale < 1 || c.downscale > 4) fail("downscale", "must be 1-4");
   if (c.lr_max_diff > 64) fail("lr_max_diff", "must be <= 64 px");
   if (c.speckle_window > 100000 || c.speckle_range > 64) fail("speckle_window", "or speckle_range is absurd");
   if (c.mode != "sgbm" && c.mode != "3way" && c.mode != "hh") fail("mode", "must be sgbm, 3way or hh");
@@ -144,37 +167,34 @@ DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectifi
   cv::Mat gl = out.left_rectified, gr = right_rect, raw;
   if (left.channels() == 3) cv::cvtColor(out.left_rectified, gl, cv::COLOR_BGR2GRAY), cv::cvtColor(right_rect, gr, cv::COLOR_BGR2GRAY);
   stage("match");
-  // SGBM leaves the first min + num disparity columns unmatched (a band 20-30 % of the image
-  // wide); padded on the left, they are matched wherever the right camera sees them too.
-  const int pad = rect.min_disparity + rect.num_disparities;
-  cv::Mat pl, pr, padded;
-  cv::copyMakeBorder(gl, pl, 0, 0, pad, 0, cv::BORDER_CONSTANT, cv::Scalar(0));
-  cv::copyMakeBorder(gr, pr, 0, 0, pad, 0, cv::BORDER_CONSTANT, cv::Scalar(0));
-  matcher(rect, cfg, 1)->compute(pl, pr, padded);
-  raw = padded.colRange(pad, padded.cols);
+  int valid = 0;
+  raw = match(gl, gr, rect, cfg, valid);
   stage("cloud");
   const Pinhole& k = rect.camera;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const double fB = k.fx * rect.baseline;
-  out.disparity.create(raw.size(), CV_32F);
+  const int W = gl.cols, H = gl.rows, scale = int(cfg.downscale);
+  out.disparity.create(gl.size(), CV_32F);
   Cloud& c = out.cloud;
-  c.width = std::uint32_t(raw.cols), c.height = std::uint32_t(raw.rows);
-  c.points.resize(raw.total());
-  c.colors.resize(raw.total());
+  c.width = std::uint32_t(W), c.height = std::uint32_t(H);
+  c.points.resize(std::size_t(W) * std::size_t(H));
+  c.colors.resize(c.points.size());
   const cv::Matx33d& M = rect.left_from_rect;
   const bool bgr = left.channels() == 3;
-  cv::parallel_for_(cv::Range(0, raw.rows), [&](const cv::Range& rows) {
+  cv::parallel_for_(cv::Range(0, H), [&](const cv::Range& rows) {
     for (int v = rows.start; v < rows.end; ++v) {
-      const auto* d16 = raw.ptr<short>(v);
+      const auto* d16 = raw.ptr<short>(std::min(v / scale, raw.rows - 1));
       const auto* px = out.left_rectified.ptr<std::uint8_t>(v);
       auto* disp = out.disparity.ptr<float>(v);
-      for (int u = 0; u < raw.cols; ++u) {
+      for (int u = 0; u < W; ++u) {
         const std::size_t i = std::size_t(v) * c.width + std::size_t(u);
         c.colors[i] = bgr ? Rgb8{px[3 * u + 2], px[3 * u + 1], px[3 * u]} : Rgb8{px[u], px[u], px[u]};
         c.points[i] = Eigen::Vector3f::Constant(nan);
         disp[u] = nan;
-        const double d = d16[u] / 16.0;  // SGBM's disparities are fixed point, 4 fractional bits
-        if (d16[u] < rect.min_disparity * 16 || d <= 0.0) continue;
+        // SGBM's disparities are fixed point with 4 fractional bits, in the matched image's pixels.
+        const short q = d16[std::min(u / scale, raw.cols - 1)];
+        const double d = q * scale / 16.0;
+        if (q < valid) continue;
         const double z = fB / d;  // eq. 3.25
         if (z > cfg.max_range) continue;
         disp[u] = float(d);

@@ -25,6 +25,8 @@ struct DenseConfig {
   std::uint32_t lr_max_diff = 1;        // ...to within this many px
   std::uint32_t speckle_window = 100;   // px: disparity blobs smaller than this are removed...
   std::uint32_t speckle_range = 2;      // ...when their disparities stay within this many px
+  std::uint32_t downscale = 1;          // match on the pair shrunk this many times (1 or 2: 4x faster,
+                                        // half the depth resolution); the cloud keeps every pixel
   std::string mode = "3way";  // "sgbm" (5 paths), "3way" (OpenCV's faster parallel variant), "hh" (8 paths)
   double port_reference = 2.0;  // m: behind a flat port, the Pinax maps are exact at this distance
 };

@@ -36,6 +36,7 @@ void visit_stereo(Visitor& v, camera::DenseConfig& c) {
   v.field("lr_max_diff", c.lr_max_diff, 0, 64);
   v.field("speckle_window", c.speckle_window, 0, 100000);
   v.field("speckle_range", c.speckle_range, 0, 64);
+  v.field("downscale", c.downscale, 1, 4);
   v.choice("mode", c.mode, {"3way", "sgbm", "hh"});
   v.field("port_reference", c.port_reference, 1e-3, 1000.0);
 }
