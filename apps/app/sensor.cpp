@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -11,6 +12,7 @@
 #include "uwgrasp/camera/rgbd.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/scene_yaml.hpp"
+#include "uwgrasp/viz/picture.hpp"
 
 namespace uwgrasp::app {
 
@@ -148,6 +150,36 @@ cv::Mat matches_picture(const cv::Mat& left, const cv::Mat& right, const camera:
                 r.matches.size(), r.matches.empty() ? 0.0 : lo, hi);
   cv::putText(out, line, {8, 23}, cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   return out;
+}
+
+camera::DenseFrame simulated_stereo(const sim::StereoFrame& s, const camera::DenseConfig& cfg,
+                                    const std::optional<FlatPort>& port, StageTimer* timer) {
+  const auto& k = s.intrinsics;
+  camera::StereoRig rig;
+  rig.left = {k.width, k.height, k.fx, k.fy, k.cx, k.cy, {}};
+  rig.right = rig.left;
+  rig.T = Eigen::Vector3d(-s.baseline, 0.0, 0.0);
+  return camera::dense_stereo(viz::rgb_image(s.left, k.width, k.height), viz::rgb_image(s.right, k.width, k.height),
+                              camera::rectify(rig, cfg, port), cfg, "simulated stereo pair", timer);
+}
+
+DepthAccuracy depth_accuracy(const Cloud& got, const sim::Frame& truth, int label, double max_depth) {
+  std::vector<double> rel;
+  DepthAccuracy a;
+  for (std::size_t i = 0; i < truth.cloud.size() && i < got.size(); ++i) {
+    const float zt = truth.cloud.points[i].z();
+    if (!std::isfinite(zt) || zt > max_depth || (label >= 0 && truth.labels[i] != label)) continue;
+    ++a.pixels;
+    if (const float z = got.points[i].z(); std::isfinite(z)) rel.push_back(std::abs(double(z) - zt) / zt);
+  }
+  if (!rel.empty()) {
+    std::nth_element(rel.begin(), rel.begin() + std::ptrdiff_t(rel.size() / 2), rel.end());
+    a.median_error = rel[rel.size() / 2];
+  } else {
+    a.median_error = std::numeric_limits<double>::quiet_NaN();
+  }
+  a.completeness = a.pixels ? double(rel.size()) / double(a.pixels) : 0.0;
+  return a;
 }
 
 Cloud sensor_input(const SensorOptions& o, const std::string& cloud_file, const camera::DenseConfig& cfg,

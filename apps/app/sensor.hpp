@@ -12,6 +12,7 @@
 #include "uwgrasp/camera/sparse.hpp"
 #include "uwgrasp/core/cloud.hpp"
 #include "uwgrasp/core/timer.hpp"
+#include "uwgrasp/sim/render.hpp"
 
 namespace uwgrasp::app {
 
@@ -48,6 +49,21 @@ cv::Mat disparity_picture(const camera::DenseFrame& f, const std::string& title)
 // The two images side by side with a line per triangulated match, coloured by depth.
 cv::Mat matches_picture(const cv::Mat& left, const cv::Mat& right, const camera::SparseResult& r,
                         const std::string& title);
+
+// A simulated stereo pair through the real pipeline: the simulator's rig (already rectified, no
+// distortion) and its images matched as a camera's would be. With `port`, the rig sits behind it
+// and Pinax corrects it. Records rectify, match and cloud in `timer` when given.
+camera::DenseFrame simulated_stereo(const sim::StereoFrame& s, const camera::DenseConfig& cfg,
+                                    const std::optional<FlatPort>& port = std::nullopt, StageTimer* timer = nullptr);
+
+// Median |z - z_true| / z_true and completeness of a cloud against the true depth of the same
+// pixels, over the pixels whose label is `label` (any label when negative) and whose true depth
+// is at most `max_depth`.
+struct DepthAccuracy {
+  double median_error = 0.0, completeness = 0.0;
+  std::size_t pixels = 0;
+};
+DepthAccuracy depth_accuracy(const Cloud& got, const sim::Frame& truth, int label, double max_depth);
 
 // The cloud of whichever input the options name (exactly one of a cloud file, --stereo, --rgbd);
 // `name` is set to what to call it in output.

@@ -23,7 +23,10 @@ struct JudgedCase {
   std::string scene;  // built-in name or scene file
   std::string water;  // preset
   bool noise = false; // realistic sensor (noise, dropouts, marine snow)
-  std::string label() const { return water + (noise ? "" : " (perfect sensor)"); }
+  std::string sensor = "rgbd";  // or "stereo": the pair matched by camera/ into the cloud
+  std::string label() const {
+    return water + (sensor == "stereo" ? " stereo" : "") + (noise ? "" : " (perfect sensor)");
+  }
 };
 
 struct JudgedPlan {
@@ -52,6 +55,10 @@ struct JudgedRun {
   double predicted_width = std::numeric_limits<double>::quiet_NaN();
   bool contact_seen[2] = {false, false};
   double detect_ms = 0, judge_ms = 0;
+  // Stereo: the object's true depth against the matched cloud (median relative error, share of
+  // its visible pixels with a depth); NaN for the RGB-D sensor.
+  double depth_error = std::numeric_limits<double>::quiet_NaN();
+  double completeness = std::numeric_limits<double>::quiet_NaN();
 };
 
 // A feasible candidate's own scores beside its judged outcome at the reference mu.

@@ -22,6 +22,7 @@ struct ExperimentOptions {
   std::string command;  // as typed, for the report
   std::string study = "thesis";
   std::vector<std::string> scenes = {"held-in"};
+  std::vector<std::string> sensors = {"rgbd"};
   std::int64_t robust = 25;
   bool no_calibration = false;
 };
@@ -49,10 +50,11 @@ int run_judged(const ExperimentOptions& o) {
   const std::vector<std::string> scenes = judged_scenes(o.scenes);
   for (const auto& scene : scenes) (void)io::load_scene(scene);  // bad names fail before any work
   for (const auto& scene : scenes)
-    for (const auto& w : o.waters) {
-      const bool noisy = w != "clear";
-      plan.cases.push_back({scene, w == "clear-noisy" ? "clear" : w, noisy});
-    }
+    for (const auto& w : o.waters)
+      for (const auto& sensor : o.sensors) {
+        const bool noisy = w != "clear";
+        plan.cases.push_back({scene, w == "clear-noisy" ? "clear" : w, noisy, sensor});
+      }
   const auto results = experiments::run_judged_study(plan);
   experiments::write_judged_report(o.out, results, plan, o.command,
                                    "uwgrasp judged study: grasps against the full shapes");
@@ -105,6 +107,9 @@ void add_experiments_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run
   cmd->add_option("--robust", o->robust, "Judged study: perturbed poses per top-1 (0: off)")
       ->check(CLI::Range(0, 100000))->capture_default_str();
   cmd->add_flag("--no-calibration", o->no_calibration, "Judged study: judge the top grasps only");
+  cmd->add_option("--sensor", o->sensors, "Judged study: rgbd (the depth camera), stereo (the rig's pair matched "
+                  "into the cloud), or both")->delimiter(',')->check(CLI::IsMember({"rgbd", "stereo"}))
+      ->capture_default_str();
   add_common(*cmd, o->common);
   runners.emplace_back(cmd, [o] { return run_experiments(*o); });
 }

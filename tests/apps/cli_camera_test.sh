@@ -61,6 +61,15 @@ if "$BIN" simulate --scene thesis --sensor stereo --port "$T/port.yaml" --out "$
    "$BIN" stereo "$T/simp/left.png" "$T/simp/right.png" --calib "$T/simp/stereo.yaml" --port "$T/simp/port.yaml" \
      --out "$T/pp.pcd" >"$T/pp.txt" 2>&1 && grep -q "flat port by Pinax" "$T/pp.txt"; then ok; else
   bad "stereo --port: $(tail -2 "$T/pp.txt")"; fi
+# The thesis scene from a simulated stereo pair through the whole chain, and the judged study's stereo condition.
+if "$BIN" demo --sensor stereo --out "$T/demo" >"$T/demo.txt" 2>&1 && grep -q "^stereo: rectify" "$T/demo.txt" &&
+   [[ -s $T/demo/left.png && -s $T/demo/stereo.yaml && -s $T/demo/grasps.json ]]; then ok; else
+  bad "demo --sensor stereo: $(tail -2 "$T/demo.txt")"; fi
+if "$BIN" experiments --study judged --scenes cross --water coastal --sensor rgbd,stereo --iterations 1 --no-calibration \
+     --out "$T/js" >/dev/null 2>"$T/js.txt" && grep -q "## Stereo" "$T/js/report.md" &&
+   grep -q "cross, coastal stereo |" "$T/js/report.md" && grep -q "stereo_depth_error" "$T/js/runs.csv"; then ok; else
+  bad "judged study with --sensor stereo: $(tail -2 "$T/js.txt")"; fi
+expect 2 "" -- experiments --study judged --sensor sonar --iterations 1 --out "$T/out"
 # rgbd: the simulated depth and colour with a camera file made from the simulated intrinsics.
 printf 'image_width: 640\nimage_height: 480\ncamera_matrix: {rows: 3, cols: 3, data: [554.3827128226441, 0, 319.5, 0, 554.3827128226441, 239.5, 0, 0, 1]}\ndistortion_model: plumb_bob\ndistortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n' >"$T/cam.yaml"
 expect 0 "" -- rgbd --help
