@@ -39,6 +39,8 @@ expect 0 "" -- stereo --help
 expect 2 "small.pgm" -- stereo "$S/left.png" "$T/small.pgm" --calib "$S/stereo.yaml" --out "$T/out/c.pcd"
 expect 2 "junk.png" -- stereo "$S/left.png" "$T/junk.png" --calib "$S/stereo.yaml" --out "$T/out/c.pcd"
 expect 2 "nok.yaml" -- stereo "$S/left.png" "$S/right.png" --calib "$T/nok.yaml" --out "$T/out/c.pcd"
+printf 'image_width: 640\nimage_height: 480\nleft: {D: [0, 0, 0, 0, 0]}\nright: {K: [500, 0, 320, 0, 500, 240, 0, 0, 1], D: [0, 0, 0, 0, 0]}\nR: [1, 0, 0, 0, 1, 0, 0, 0, 1]\nT: [-0.1, 0, 0]\n' >"$T/noK.yaml"
+expect 2 "missing left.K" -- stereo "$S/left.png" "$S/right.png" --calib "$T/noK.yaml" --out "$T/out/c.pcd"
 expect 2 "singular" -- stereo "$S/left.png" "$S/right.png" --calib "$T/singular.yaml" --out "$T/out/c.pcd"
 expect 2 "n_glass" -- stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --port "$T/badport.yaml" --out "$T/out/c.pcd"
 expect 2 "exactly one input" -- detect "$S/cloud.pcd" --stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml"
