@@ -1,9 +1,11 @@
 #include "uwgrasp/cloud/preprocess.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <unordered_set>
 #include <utility>
 
 #include "uwgrasp/core/error.hpp"
@@ -65,11 +67,45 @@ void keep_turned_points(const Cloud& cur, const PixelMap& map, const PreprocessC
   std::erase_if(plane.inliers, [&](std::uint32_t i) { return off[i] != 0; });
 }
 
+// Whether the points clearly off the plane (beyond three inlier distances) and over its inliers
+// (their projection along the normal within a cell of an inlier's) lie mostly on the sensor's
+// side of it, as objects standing on a support do, rather than behind it, as the rest of an
+// object does behind one of its own faces. Points beyond the plane's edge (the room behind a
+// table) do not count either way.
+bool supports_the_rest(const Cloud& cur, const PlaneConfig& cfg, const PlaneResult& plane) {
+  const Eigen::Vector4f& n = plane.coefficients;
+  const Eigen::Vector3f normal = n.head<3>();
+  const Eigen::Vector3f a = normal.unitOrthogonal(), b = normal.cross(a);
+  const float cell = std::max(2.0f * cfg.distance, 0.01f);
+  const auto key = [&](const Eigen::Vector3f& p, int du, int dv) {
+    const auto u = std::int64_t(std::floor(a.dot(p) / cell)) + du, v = std::int64_t(std::floor(b.dot(p) / cell)) + dv;
+    return (u << 32) ^ (v & 0xffffffff);
+  };
+  std::unordered_set<std::int64_t> over;
+  for (const auto i : plane.inliers) over.insert(key(cur.points[i], 0, 0));
+  const float sensor = normal.dot(cur.viewpoint) + n[3];
+  std::size_t front = 0, behind = 0;
+  for (const auto& p : cur.points) {
+    const float d = normal.dot(p) + n[3];
+    if (std::abs(d) <= 3.0f * cfg.distance) continue;
+    bool inside = false;
+    for (int du = -1; du <= 1 && !inside; ++du)
+      for (int dv = -1; dv <= 1 && !inside; ++dv) inside = over.count(key(p, du, dv)) > 0;
+    if (inside) ++(d * sensor > 0.0f ? front : behind);
+  }
+  return front >= behind;
+}
+
 // The plane (4.1.4), widened to the measured noise; `map` (organised frames) lets the normals
 // keep an object's foot.
 void remove_plane(Cloud& cur, const PreprocessConfig& cfg, std::uint64_t seed, Preprocessed& out,
                   const PixelMap* map = nullptr) {
   out.plane = fit_plane(cur, cfg.plane, seed);
+  if (out.plane.found && cfg.plane.support_only && !supports_the_rest(cur, cfg.plane, out.plane)) {
+    out.plane.found = false;  // a face of the object (object-only clouds): nothing to remove
+    out.plane.inliers.clear();
+    out.plane_is_face = true;
+  }
   if (out.plane.found && cfg.plane.noise_sigmas > 0.0f) widen_to_noise(cur, cfg.plane, out);
   if (out.plane.found && map && cfg.plane.normal_angle > 0.0f) keep_turned_points(cur, *map, cfg, out.plane);
   if (!out.plane.found && cfg.plane.required)

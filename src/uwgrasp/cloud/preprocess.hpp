@@ -42,6 +42,7 @@ struct Preprocessed {
   // For every input point, true if the plane stage removed it (or the voxel that held it).
   std::vector<char> plane_of_input;
   PlaneResult plane;  // coefficients; inliers refer to the cloud the plane stage saw
+  bool plane_is_face = false;  // the plane found was a face of the object, not a support (kept)
   NoiseModel noise;   // the depth noise measured on the plane (found only with noise_sigmas > 0)
   PreprocessCounts counts;
   // The kNN lists the normals were computed from (k = max(normals.k, share_k)), or on the

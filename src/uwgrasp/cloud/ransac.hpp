@@ -23,6 +23,10 @@ struct PlaneConfig {
   // when its window's normal turns more than this many degrees from the plane's (the foot of an
   // object standing on it, not noisy floor); 0: the band alone.
   float normal_angle = 30.0f;
+  // The plane is removed only when it supports the rest: most points off it lie between it and
+  // the sensor (a seafloor, table or wall with objects in front). When most lie behind it, seen
+  // from the sensor, it is a face of the object itself (an object-only scan) and stays.
+  bool support_only = true;
 };
 
 struct PlaneResult {

@@ -40,6 +40,7 @@ void visit_preprocess(Visitor& v, cloud::PreprocessConfig& c) {
     v.field("required", c.plane.required);
     v.field("noise_sigmas", c.plane.noise_sigmas, 0.0, 100.0);
     v.field("normal_angle", c.plane.normal_angle, 0.0, 90.0);
+    v.field("support_only", c.plane.support_only);
   });
   v.section("normals", [&] {
     v.field("k", c.normals.k, 3, 1000);
