@@ -4,8 +4,6 @@
 // the real shared pair left01/right01 with the rig calibrated from all 13; and detect from the
 // simulated pair to the best grasp, stage by stage.
 //   stereo [--repeats N]   (default 20)
-#include <opencv2/core/utility.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -13,6 +11,8 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
@@ -21,6 +21,7 @@
 #include "uwgrasp/grasp/detector.hpp"
 #include "uwgrasp/io/config.hpp"
 #include "uwgrasp/sim/render.hpp"
+#include "uwgrasp/viz/picture.hpp"
 
 using namespace uwgrasp;
 namespace fs = std::filesystem;
@@ -29,12 +30,6 @@ namespace {
 double median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
   return v[v.size() / 2];
-}
-
-cv::Mat bgr(const std::vector<Rgb8>& rgb, int w, int h) {
-  cv::Mat m(h, w, CV_8UC3);
-  for (int i = 0; i < w * h; ++i) m.at<cv::Vec3b>(i) = {rgb[std::size_t(i)].b, rgb[std::size_t(i)].g, rgb[std::size_t(i)].r};
-  return m;
 }
 
 struct Pair {
@@ -52,7 +47,11 @@ Pair simulated() {
   const Pose pose = sim::camera_pose(scene, Mount{});
   const sim::StereoFrame s = sim::render_stereo(world, pose, cfg, 1);
   cfg.noise.enabled = false;
-  Pair p{"simulated thesis scene", bgr(s.left, 640, 480), bgr(s.right, 640, 480), {}, sim::render_rgbd(world, pose, cfg, 1).cloud};
+  Pair p{"simulated thesis scene",
+         viz::rgb_image(s.left, 640, 480),
+         viz::rgb_image(s.right, 640, 480),
+         {},
+         sim::render_rgbd(world, pose, cfg, 1).cloud};
   const auto& k = s.intrinsics;
   p.rig.left = {k.width, k.height, k.fx, k.fy, k.cx, k.cy, {}};
   p.rig.right = p.rig.left;
@@ -65,9 +64,12 @@ std::optional<Pair> real_pair() {
   const fs::path dir = fs::path(UWGRASP_DATA_DIR) / "stereo";
   if (!fs::exists(dir / "left01.jpg")) return std::nullopt;
   std::vector<camera::View> l, r;
-  for (const char* n : {"01", "02", "03", "04", "05", "06", "07", "08", "09", "11", "12", "13", "14"}) {
-    l.push_back({n, cv::imread((dir / (std::string("left") + n + ".jpg")).string(), cv::IMREAD_GRAYSCALE)});
-    r.push_back({n, cv::imread((dir / (std::string("right") + n + ".jpg")).string(), cv::IMREAD_GRAYSCALE)});
+  for (const char* n :
+       {"01", "02", "03", "04", "05", "06", "07", "08", "09", "11", "12", "13", "14"}) {
+    l.push_back(
+        {n, cv::imread((dir / (std::string("left") + n + ".jpg")).string(), cv::IMREAD_GRAYSCALE)});
+    r.push_back({n, cv::imread((dir / (std::string("right") + n + ".jpg")).string(),
+                               cv::IMREAD_GRAYSCALE)});
   }
   const camera::StereoCalibration c = camera::calibrate_stereo(l, r, {9, 6, 0.025});
   return Pair{"real pair left01 (calibrated rig)", l[0].image, r[0].image, c.rig, {}};
@@ -84,7 +86,8 @@ Accuracy accuracy(const Cloud& got, const Cloud& truth) {
     const float zt = truth.points[i].z();
     if (!std::isfinite(zt) || zt > 2.0f) continue;
     ++near;
-    if (const float z = got.points[i].z(); std::isfinite(z)) rel.push_back(std::abs(double(z) - zt) / zt);
+    if (const float z = got.points[i].z(); std::isfinite(z))
+      rel.push_back(std::abs(double(z) - zt) / zt);
   }
   return {rel.empty() ? 1.0 : median(rel), double(rel.size()) / std::max(near, 1)};
 }
@@ -106,10 +109,11 @@ void run(const Pair& p, const std::string& setting, const camera::DenseConfig& c
     const Accuracy a = p.truth.empty() ? Accuracy{NAN, NAN} : accuracy(f.cloud, p.truth);
     std::size_t matched = 0;
     for (const auto& q : f.cloud.points) matched += std::isfinite(q.z());
-    std::printf("| %s | %s | %d | %.1f | %.1f | %.1f | **%.1f** | %d | %.2f %% | %.1f %% | %.1f %% |\n", p.name.c_str(),
-                setting.c_str(), threads, median(st["rectify"]), median(st["match"]), median(st["cloud"]), median(total),
-                rect.num_disparities, 100 * a.error, 100 * a.completeness,
-                100.0 * double(matched) / double(f.cloud.size()));
+    std::printf(
+        "| %s | %s | %d | %.1f | %.1f | %.1f | **%.1f** | %d | %.2f %% | %.1f %% | %.1f %% |\n",
+        p.name.c_str(), setting.c_str(), threads, median(st["rectify"]), median(st["match"]),
+        median(st["cloud"]), median(total), rect.num_disparities, 100 * a.error,
+        100 * a.completeness, 100.0 * double(matched) / double(f.cloud.size()));
     std::fflush(stdout);
   }
 }
@@ -123,8 +127,10 @@ void detect_stages(const Pair& p, int repeats) {
   std::vector<double> total;
   for (int r = 0; r < repeats + 1; ++r) {
     StageTimer t;
-    const camera::DenseFrame f = camera::dense_stereo(p.left, p.right, rect, cfg.stereo, p.name, &t);
-    const grasp::Detection d = grasp::detect(f.cloud, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed);
+    const camera::DenseFrame f =
+        camera::dense_stereo(p.left, p.right, rect, cfg.stereo, p.name, &t);
+    const grasp::Detection d =
+        grasp::detect(f.cloud, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed);
     if (r == 0) continue;
     for (const StageTimer* timer : {static_cast<const StageTimer*>(&t), &d.timer})
       for (const auto& s : timer->stages()) {
@@ -133,7 +139,8 @@ void detect_stages(const Pair& p, int repeats) {
       }
     total.push_back(t.total_ms() + d.timer.total_ms());
   }
-  std::printf("\n%s -> best grasp, default settings, 2 threads, median of %d (ms):\n\n|", p.name.c_str(), repeats);
+  std::printf("\n%s -> best grasp, default settings, 2 threads, median of %d (ms):\n\n|",
+              p.name.c_str(), repeats);
   for (const auto& n : order) std::printf(" %s |", n.c_str());
   std::printf(" total |\n|");
   for (std::size_t i = 0; i <= order.size(); ++i) std::printf("---|");
@@ -149,8 +156,10 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--repeats")) repeats = std::max(1, std::atoi(argv[i + 1]));
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
   std::vector<Pair> pairs{simulated()};
-  if (auto r = real_pair()) pairs.push_back(std::move(*r));
-  else std::fprintf(stderr, "shared data absent: the real pair is skipped\n");
+  if (auto r = real_pair())
+    pairs.push_back(std::move(*r));
+  else
+    std::fprintf(stderr, "shared data absent: the real pair is skipped\n");
   std::vector<std::pair<std::string, camera::DenseConfig>> settings;
   camera::DenseConfig c;
   settings.emplace_back("default (3way, block 5, 0.5-6 m)", c);
@@ -164,8 +173,11 @@ int main(int argc, char** argv) {
   settings.emplace_back("3way, half size, 0.8-6 m", c);
   c = {}, c.mode = "sgbm";
   settings.emplace_back("sgbm (5 paths)", c);
-  std::printf("| pair | matcher | threads | rectify ms | match ms | cloud ms | total ms | disparities | median depth "
-              "error <= 2 m | completeness <= 2 m | matched |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| pair | matcher | threads | rectify ms | match ms | cloud ms | total ms | disparities | "
+      "median depth "
+      "error <= 2 m | completeness <= 2 m | matched "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& p : pairs)
     for (const auto& [name, cfg] : settings) run(p, name, cfg, repeats);
   detect_stages(pairs.front(), repeats);

@@ -2,11 +2,10 @@
 // Images to clouds for the CLI: a stereo pair with its rig's calibration (optionally behind a
 // flat port), or a depth + colour pair with its camera's, read from files and turned into the
 // organised cloud the pipeline takes (thesis ch. 3).
+#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "uwgrasp/camera/dense.hpp"
 #include "uwgrasp/camera/sparse.hpp"
@@ -37,10 +36,12 @@ struct StereoCloud {
 };
 // LEFT RIGHT with the rig of `calib` (and the port of `port`, if not empty): rectify, match,
 // triangulate. Times the stages read, rectify, match and cloud into `timer`.
-StereoCloud stereo_cloud(const std::string& left, const std::string& right, const std::string& calib,
-                         const std::string& port, const camera::DenseConfig& cfg, StageTimer& timer);
+StereoCloud stereo_cloud(const std::string& left, const std::string& right,
+                         const std::string& calib, const std::string& port,
+                         const camera::DenseConfig& cfg, StageTimer& timer);
 // DEPTH RGB with the camera of `camera_file`.
-Cloud rgbd_cloud(const std::string& depth, const std::string& rgb, const std::string& camera_file, StageTimer& timer);
+Cloud rgbd_cloud(const std::string& depth, const std::string& rgb, const std::string& camera_file,
+                 StageTimer& timer);
 
 // The rectified left image beside its disparity (near warm, far cool, no match black), with a
 // title line: what `stereo --png` writes.
@@ -54,7 +55,8 @@ cv::Mat matches_picture(const cv::Mat& left, const cv::Mat& right, const camera:
 // distortion) and its images matched as a camera's would be. With `port`, the rig sits behind it
 // and Pinax corrects it. Records rectify, match and cloud in `timer` when given.
 camera::DenseFrame simulated_stereo(const sim::StereoFrame& s, const camera::DenseConfig& cfg,
-                                    const std::optional<FlatPort>& port = std::nullopt, StageTimer* timer = nullptr);
+                                    const std::optional<FlatPort>& port = std::nullopt,
+                                    StageTimer* timer = nullptr);
 
 // Median |z - z_true| / z_true and completeness of a cloud against the true depth of the same
 // pixels, over the pixels whose label is `label` (any label when negative) and whose true depth
@@ -63,11 +65,12 @@ struct DepthAccuracy {
   double median_error = 0.0, completeness = 0.0;
   std::size_t pixels = 0;
 };
-DepthAccuracy depth_accuracy(const Cloud& got, const sim::Frame& truth, int label, double max_depth);
+DepthAccuracy depth_accuracy(const Cloud& got, const sim::Frame& truth, int label,
+                             double max_depth);
 
 // The cloud of whichever input the options name (exactly one of a cloud file, --stereo, --rgbd);
 // `name` is set to what to call it in output.
-Cloud sensor_input(const SensorOptions& o, const std::string& cloud_file, const camera::DenseConfig& cfg,
-                   StageTimer& timer, std::string& name);
+Cloud sensor_input(const SensorOptions& o, const std::string& cloud_file,
+                   const camera::DenseConfig& cfg, StageTimer& timer, std::string& name);
 
 }  // namespace uwgrasp::app

@@ -47,12 +47,15 @@ std::vector<camera::View> load(const std::vector<std::string>& paths) {
 }
 
 void print_camera(const char* what, const camera::Pinhole& c) {
-  std::printf("%s: %d x %d, fx %.3f fy %.3f cx %.3f cy %.3f, distortion k1 %.5f k2 %.5f p1 %.5f p2 %.5f k3 %.5f\n",
-              what, c.width, c.height, c.fx, c.fy, c.cx, c.cy, c.distortion[0], c.distortion[1], c.distortion[2],
-              c.distortion[3], c.distortion[4]);
+  std::printf(
+      "%s: %d x %d, fx %.3f fy %.3f cx %.3f cy %.3f, distortion k1 %.5f k2 %.5f p1 %.5f p2 %.5f k3 "
+      "%.5f\n",
+      what, c.width, c.height, c.fx, c.fy, c.cx, c.cy, c.distortion[0], c.distortion[1],
+      c.distortion[2], c.distortion[3], c.distortion[4]);
 }
 
-void print_views(const std::vector<camera::ViewError>& views, const std::vector<std::string>& rejected) {
+void print_views(const std::vector<camera::ViewError>& views,
+                 const std::vector<std::string>& rejected) {
   for (const auto& v : views) std::printf("  %-40s RMS %.4f px\n", v.name.c_str(), v.rms);
   for (const auto& r : rejected) std::printf("  %-40s board not found, left out\n", r.c_str());
 }
@@ -65,17 +68,21 @@ int run_calibrate(const CalibrateOptions& o) {
     const camera::MonoCalibration c = camera::calibrate(load(o.images), board);
     print_views(c.views, c.rejected);
     print_camera("camera", c.camera);
-    std::printf("RMS reprojection error %.4f px over %zu of %zu images\n", c.rms, c.views.size(), o.images.size());
+    std::printf("RMS reprojection error %.4f px over %zu of %zu images\n", c.rms, c.views.size(),
+                o.images.size());
     io::write_text(o.out, camera::camera_yaml(c.camera));
   } else {
-    const camera::StereoCalibration c = camera::calibrate_stereo(load(o.images), load(o.right), board);
+    const camera::StereoCalibration c =
+        camera::calibrate_stereo(load(o.images), load(o.right), board);
     print_views(c.views, c.rejected);
     print_camera("left ", c.rig.left);
     print_camera("right", c.rig.right);
-    std::printf("T (%.5f, %.5f, %.5f), baseline %.5f (in the square's unit)\n", c.rig.T.x(), c.rig.T.y(),
-                c.rig.T.z(), c.rig.baseline());
-    std::printf("RMS reprojection error: stereo %.4f px over %zu of %zu pairs (left alone %.4f, right alone %.4f)\n",
-                c.rms, c.views.size(), o.images.size(), c.left_rms, c.right_rms);
+    std::printf("T (%.5f, %.5f, %.5f), baseline %.5f (in the square's unit)\n", c.rig.T.x(),
+                c.rig.T.y(), c.rig.T.z(), c.rig.baseline());
+    std::printf(
+        "RMS reprojection error: stereo %.4f px over %zu of %zu pairs (left alone %.4f, right "
+        "alone %.4f)\n",
+        c.rms, c.views.size(), o.images.size(), c.left_rms, c.right_rms);
     io::write_text(o.out, camera::stereo_yaml(c.rig));
   }
   std::printf("wrote %s\n", o.out.c_str());
@@ -84,13 +91,17 @@ int run_calibrate(const CalibrateOptions& o) {
 }  // namespace
 
 void add_calibrate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners) {
-  auto* cmd = app.add_subcommand("calibrate", "Zhang calibration of a camera or a stereo rig from checkerboard images");
+  auto* cmd = app.add_subcommand(
+      "calibrate", "Zhang calibration of a camera or a stereo rig from checkerboard images");
   auto o = std::make_shared<CalibrateOptions>();
-  cmd->add_option("images", o->images, "Images of the board (the left camera's, for a rig)")->required();
-  cmd->add_option("--right", o->right, "The right camera's images, in the same order: calibrate the stereo rig");
+  cmd->add_option("images", o->images, "Images of the board (the left camera's, for a rig)")
+      ->required();
+  cmd->add_option("--right", o->right,
+                  "The right camera's images, in the same order: calibrate the stereo rig");
   cmd->add_option("--board", o->board, "Inner corners COLSxROWS (default 9x6)");
   cmd->add_option("--square", o->square, "Side of a square, m (default 1: results in squares)");
-  cmd->add_option("--out", o->out, "Calibration file to write (ROS camera_info YAML; a stereo file with --right)")
+  cmd->add_option("--out", o->out,
+                  "Calibration file to write (ROS camera_info YAML; a stereo file with --right)")
       ->required();
   runners.emplace_back(cmd, [o] { return run_calibrate(*o); });
 }

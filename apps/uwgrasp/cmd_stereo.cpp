@@ -14,8 +14,8 @@
 #include "uwgrasp/camera/files.hpp"
 #include "uwgrasp/camera/sparse.hpp"
 #include "uwgrasp/core/error.hpp"
-#include "uwgrasp/io/scene_yaml.hpp"
 #include "uwgrasp/io/pcd.hpp"
+#include "uwgrasp/io/scene_yaml.hpp"
 
 namespace uwgrasp::app {
 
@@ -56,18 +56,23 @@ int run_sparse(const StereoOptions& o, const io::Config& cfg) {
   timer.start("features, matching, triangulation");
   const camera::SparseResult res = camera::sparse_stereo(l, r, tri, sc);
   timer.stop();
-  std::printf("%s keypoints: %zu left, %zu right; ratio test %zu, cross-check %zu, epipolar (<= %.1f px) %zu, "
-              "triangulated %zu\n", o.detector.c_str(), res.left_keypoints, res.right_keypoints, res.ratio_passed,
-              res.cross_checked, sc.epipolar_px, res.epipolar_passed, res.matches.size());
+  std::printf(
+      "%s keypoints: %zu left, %zu right; ratio test %zu, cross-check %zu, epipolar (<= %.1f px) "
+      "%zu, "
+      "triangulated %zu\n",
+      o.detector.c_str(), res.left_keypoints, res.right_keypoints, res.ratio_passed,
+      res.cross_checked, sc.epipolar_px, res.epipolar_passed, res.matches.size());
   print_times(timer);
-  if (res.matches.empty()) throw Error(o.left + " and " + o.right + ": no feature matched (nothing written)");
+  if (res.matches.empty())
+    throw Error(o.left + " and " + o.right + ": no feature matched (nothing written)");
   Cloud c;
   for (const auto& m : res.matches) {
     c.points.push_back(m.point.cast<float>());
     const int u = int(std::lround(m.left.x())), v = int(std::lround(m.left.y()));
     const std::uint8_t* px = l.ptr<std::uint8_t>(std::clamp(v, 0, l.rows - 1));
     const int x = std::clamp(u, 0, l.cols - 1);
-    c.colors.push_back(l.channels() == 3 ? Rgb8{px[3 * x + 2], px[3 * x + 1], px[3 * x]} : Rgb8{px[x], px[x], px[x]});
+    c.colors.push_back(l.channels() == 3 ? Rgb8{px[3 * x + 2], px[3 * x + 1], px[3 * x]}
+                                         : Rgb8{px[x], px[x], px[x]});
   }
   c.width = std::uint32_t(c.size());
   io::save_cloud(o.out, c);
@@ -86,8 +91,8 @@ int run_stereo(const StereoOptions& o) {
   StereoCloud s = stereo_cloud(o.left, o.right, o.calib, o.port, session.config.stereo, timer);
   std::printf("stereo: %s\n", s.summary.c_str());
   const Cloud& c = s.frame.cloud;
-  std::printf("cloud: %u x %u, %zu points with depth (%.1f %%), left camera optical frame\n", c.width, c.height,
-              finite(c), 100.0 * double(finite(c)) / double(c.size()));
+  std::printf("cloud: %u x %u, %zu points with depth (%.1f %%), left camera optical frame\n",
+              c.width, c.height, finite(c), 100.0 * double(finite(c)) / double(c.size()));
   print_times(timer);
   io::save_cloud(o.out, c);
   std::printf("wrote %s\n", o.out.c_str());
@@ -101,8 +106,8 @@ int run_stereo(const StereoOptions& o) {
 int run_rgbd(const RgbdOptions& o) {
   StageTimer timer;
   const Cloud c = rgbd_cloud(o.depth, o.rgb, o.camera, timer);
-  std::printf("cloud: %u x %u, %zu points with depth (%.1f %%), camera optical frame\n", c.width, c.height, finite(c),
-              100.0 * double(finite(c)) / double(c.size()));
+  std::printf("cloud: %u x %u, %zu points with depth (%.1f %%), camera optical frame\n", c.width,
+              c.height, finite(c), 100.0 * double(finite(c)) / double(c.size()));
   print_times(timer);
   io::save_cloud(o.out, c);
   std::printf("wrote %s\n", o.out.c_str());
@@ -111,24 +116,33 @@ int run_rgbd(const RgbdOptions& o) {
 }  // namespace
 
 void add_stereo_commands(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners) {
-  auto* cmd = app.add_subcommand("stereo", "A stereo pair to an organised cloud: rectify, match (SGBM), triangulate");
+  auto* cmd = app.add_subcommand(
+      "stereo", "A stereo pair to an organised cloud: rectify, match (SGBM), triangulate");
   auto o = std::make_shared<StereoOptions>();
   cmd->add_option("LEFT", o->left, "Left image")->required();
   cmd->add_option("RIGHT", o->right, "Right image")->required();
-  cmd->add_option("--calib", o->calib, "The rig's calibration (uwgrasp's stereo file, or OpenCV's)")->required();
-  cmd->add_option("--port", o->port, "The cameras sit behind this flat port (port.yaml): Pinax corrects it");
+  cmd->add_option("--calib", o->calib, "The rig's calibration (uwgrasp's stereo file, or OpenCV's)")
+      ->required();
+  cmd->add_option("--port", o->port,
+                  "The cameras sit behind this flat port (port.yaml): Pinax corrects it");
   cmd->add_option("--out", o->out, "Organised XYZRGB cloud to write (.pcd or .ply)")->required();
-  cmd->add_option("--png", o->png, "Draw the rectified left image and the disparity (or the matches) here");
+  cmd->add_option("--png", o->png,
+                  "Draw the rectified left image and the disparity (or the matches) here");
   cmd->add_flag("--sparse", o->sparse, "Triangulate matched keypoints instead of matching densely");
-  cmd->add_option("--detector", o->detector, "Keypoints for --sparse")->check(CLI::IsMember({"sift", "harris"}));
+  cmd->add_option("--detector", o->detector, "Keypoints for --sparse")
+      ->check(CLI::IsMember({"sift", "harris"}));
   add_common(*cmd, o->common);
   runners.emplace_back(cmd, [o] { return run_stereo(*o); });
 
-  auto* rgbd = app.add_subcommand("rgbd", "A depth image and its registered colour image to an organised cloud");
+  auto* rgbd = app.add_subcommand(
+      "rgbd", "A depth image and its registered colour image to an organised cloud");
   auto r = std::make_shared<RgbdOptions>();
-  rgbd->add_option("DEPTH", r->depth, "Depth image: 16-bit millimetres or 32-bit float metres")->required();
+  rgbd->add_option("DEPTH", r->depth, "Depth image: 16-bit millimetres or 32-bit float metres")
+      ->required();
   rgbd->add_option("RGB", r->rgb, "Colour image registered to the depth image")->required();
-  rgbd->add_option("--camera", r->camera, "The camera's calibration (ROS camera_info or OpenCV YAML)")->required();
+  rgbd->add_option("--camera", r->camera,
+                   "The camera's calibration (ROS camera_info or OpenCV YAML)")
+      ->required();
   rgbd->add_option("--out", r->out, "Organised XYZRGB cloud to write (.pcd or .ply)")->required();
   runners.emplace_back(rgbd, [r] { return run_rgbd(*r); });
 }

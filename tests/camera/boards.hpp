@@ -21,21 +21,25 @@ inline Pose camera_along_x() {
 }
 
 struct BoardPose {
-  double distance, yaw, pitch, dy, dz;  // m, rad (about W z, W y, from facing the camera), m across the view
+  double distance, yaw, pitch, dy,
+      dz;  // m, rad (about W z, W y, from facing the camera), m across the view
 };
 
 // Zhang's calibration set: near the image's centre and corners, turned up to 35 deg each way.
 inline std::vector<BoardPose> calibration_poses() {
-  return {{0.75, 0.0, 0.0, 0.0, 0.0},      {0.8, 0.6, 0.0, 0.05, 0.0},    {0.8, -0.6, 0.0, -0.05, 0.0},
-          {0.8, 0.0, 0.6, 0.0, 0.04},      {0.8, 0.0, -0.6, 0.0, -0.04},  {0.9, 0.45, 0.45, 0.15, 0.1},
-          {0.9, -0.45, 0.45, -0.15, 0.1},  {0.9, 0.45, -0.45, 0.15, -0.1}, {0.9, -0.45, -0.45, -0.15, -0.1},
-          {1.1, 0.3, -0.3, 0.25, 0.15},    {1.1, -0.3, 0.3, -0.25, -0.15}, {1.1, 0.3, 0.3, -0.25, 0.15},
-          {1.1, -0.3, -0.3, 0.25, -0.15},  {0.7, 0.3, 0.1, 0.0, 0.0}};
+  return {{0.75, 0.0, 0.0, 0.0, 0.0},       {0.8, 0.6, 0.0, 0.05, 0.0},
+          {0.8, -0.6, 0.0, -0.05, 0.0},     {0.8, 0.0, 0.6, 0.0, 0.04},
+          {0.8, 0.0, -0.6, 0.0, -0.04},     {0.9, 0.45, 0.45, 0.15, 0.1},
+          {0.9, -0.45, 0.45, -0.15, 0.1},   {0.9, 0.45, -0.45, 0.15, -0.1},
+          {0.9, -0.45, -0.45, -0.15, -0.1}, {1.1, 0.3, -0.3, 0.25, 0.15},
+          {1.1, -0.3, 0.3, -0.25, -0.15},   {1.1, 0.3, 0.3, -0.25, 0.15},
+          {1.1, -0.3, -0.3, 0.25, -0.15},   {0.7, 0.3, 0.1, 0.0, 0.0}};
 }
 
 inline Pose board_pose(const BoardPose& b) {
   Pose p = Pose::Identity();
-  p.linear() = (Eigen::AngleAxisd(b.yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(b.pitch, Eigen::Vector3d::UnitY()) *
+  p.linear() = (Eigen::AngleAxisd(b.yaw, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(b.pitch, Eigen::Vector3d::UnitY()) *
                 Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitY()))
                    .toRotationMatrix();  // the board's z towards the camera (W -x)
   p.translation() = Eigen::Vector3d(b.distance, b.dy, b.dz);
@@ -47,7 +51,8 @@ inline sim::Scene board_scene(const BoardPose& b, double square) {
   sim::Scene s;
   s.name = "board";
   s.seafloor.enabled = false;
-  sim::Shape board{.kind = sim::ShapeKind::box, .size = Eigen::Vector3d(12 * square, 9 * square, 0.005)};
+  sim::Shape board{.kind = sim::ShapeKind::box,
+                   .size = Eigen::Vector3d(12 * square, 9 * square, 0.005)};
   board.checker = {9, 6, square};
   s.objects.push_back({"board", {{board, Pose::Identity()}}, board_pose(b), {255, 255, 255}, true});
   return s;
@@ -57,7 +62,9 @@ inline sim::Scene board_scene(const BoardPose& b, double square) {
 inline std::vector<Eigen::Vector3d> board_corners(const BoardPose& b, double square) {
   std::vector<Eigen::Vector3d> out;
   for (int r = 0; r < 6; ++r)
-    for (int c = 0; c < 9; ++c) out.push_back(board_pose(b) * Eigen::Vector3d((c - 4.0) * square, (r - 2.5) * square, 0.0025));
+    for (int c = 0; c < 9; ++c)
+      out.push_back(board_pose(b) *
+                    Eigen::Vector3d((c - 4.0) * square, (r - 2.5) * square, 0.0025));
   return out;
 }
 
@@ -86,8 +93,9 @@ inline sim::Intrinsics sensor_intrinsics() {
   return sim::make_intrinsics(c);
 }
 
-inline std::pair<camera::View, camera::View> render_board(const BoardPose& b, double square, const sim::RenderConfig& cfg,
-                                                         const std::string& name) {
+inline std::pair<camera::View, camera::View> render_board(const BoardPose& b, double square,
+                                                          const sim::RenderConfig& cfg,
+                                                          const std::string& name) {
   const sim::World w(board_scene(b, square));
   const sim::StereoFrame f = sim::render_stereo(w, camera_along_x(), cfg, 1);
   const int W = f.intrinsics.width, H = f.intrinsics.height;

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 
+#include "boards.hpp"
 #include "uwgrasp/camera/calibrate.hpp"
 #include "uwgrasp/core/error.hpp"
-#include "boards.hpp"
 
 namespace {
 using namespace uwgrasp;
@@ -28,8 +28,11 @@ TEST(Calibrate, RenderedBoardsGiveTheSimulatedRigBack) {
   EXPECT_TRUE(c.rejected.empty()) << c.rejected.front();
   EXPECT_LT(c.rms, 0.3);
   for (const Pinhole& cam : {c.rig.left, c.rig.right})
-    std::printf("fx %.3f fy %.3f cx %.3f cy %.3f k1 %.4f (truth %.3f %.3f %.3f %.3f), rms %.3f, baseline %.5f\n", cam.fx,
-                cam.fy, cam.cx, cam.cy, cam.distortion[0], k.fx, k.fy, k.cx, k.cy, c.rms, c.rig.baseline());
+    std::printf(
+        "fx %.3f fy %.3f cx %.3f cy %.3f k1 %.4f (truth %.3f %.3f %.3f %.3f), rms %.3f, baseline "
+        "%.5f\n",
+        cam.fx, cam.fy, cam.cx, cam.cy, cam.distortion[0], k.fx, k.fy, k.cx, k.cy, c.rms,
+        c.rig.baseline());
   for (const Pinhole& cam : {c.rig.left, c.rig.right}) {
     EXPECT_NEAR(cam.fx, k.fx, 0.005 * k.fx);
     EXPECT_NEAR(cam.fy, k.fy, 0.005 * k.fy);
@@ -60,7 +63,8 @@ TEST(Calibrate, TheSharedRealPairsCalibrateBelowOnePixel) {
   const fs::path dir = fs::path(UWGRASP_DATA_DIR) / "stereo";
   if (!fs::exists(dir / "left01.jpg")) GTEST_SKIP() << "shared data absent: " << dir;
   std::vector<View> left, right;
-  for (const char* n : {"01", "02", "03", "04", "05", "06", "07", "08", "09", "11", "12", "13", "14"}) {
+  for (const char* n :
+       {"01", "02", "03", "04", "05", "06", "07", "08", "09", "11", "12", "13", "14"}) {
     for (auto* side : {&left, &right}) {
       std::string file = side == &left ? "left" : "right";
       file.append(n).append(".jpg");

@@ -10,16 +10,11 @@
 #include "uwgrasp/camera/dense.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/sim/render.hpp"
+#include "uwgrasp/viz/picture.hpp"
 
 namespace {
 using namespace uwgrasp;
 using namespace uwgrasp::camera;
-
-cv::Mat bgr(const std::vector<Rgb8>& rgb, int w, int h) {
-  cv::Mat m(h, w, CV_8UC3);
-  for (int i = 0; i < w * h; ++i) m.at<cv::Vec3b>(i) = {rgb[std::size_t(i)].b, rgb[std::size_t(i)].g, rgb[std::size_t(i)].r};
-  return m;
-}
 
 StereoRig rig_of(const sim::StereoFrame& f) {
   StereoRig r;
@@ -49,8 +44,8 @@ Measured thesis_scene(const std::string& water, const std::optional<FlatPort>& p
   const int W = s.intrinsics.width, H = s.intrinsics.height;
   DenseConfig dc;
   dc.downscale = downscale;
-  const DenseFrame d =
-      dense_stereo(bgr(s.left, W, H), bgr(s.right, W, H), rectify(rig_of(s), dc, pinax ? port : std::nullopt), dc);
+  const DenseFrame d = dense_stereo(viz::rgb_image(s.left, W, H), viz::rgb_image(s.right, W, H),
+                                    rectify(rig_of(s), dc, pinax ? port : std::nullopt), dc);
   EXPECT_EQ(d.cloud.width, std::uint32_t(W));
   EXPECT_EQ(d.cloud.height, std::uint32_t(H));
   std::vector<double> rel;
@@ -71,7 +66,8 @@ Measured thesis_scene(const std::string& water, const std::optional<FlatPort>& p
 
 TEST(DenseStereo, ThesisSceneDepthWithinOnePercentInClearWater) {
   const Measured clear = thesis_scene("clear");
-  std::printf("clear: median depth error %.3f %%, completeness %.1f %%\n", 100 * clear.median_rel, 100 * clear.completeness);
+  std::printf("clear: median depth error %.3f %%, completeness %.1f %%\n", 100 * clear.median_rel,
+              100 * clear.completeness);
   EXPECT_LT(clear.median_rel, 0.01);
   EXPECT_GT(clear.completeness, 0.85);  // the left band SGBM skips is matched too
 }
@@ -79,7 +75,8 @@ TEST(DenseStereo, ThesisSceneDepthWithinOnePercentInClearWater) {
 // Matched at half size (the real-time setting): a full-size cloud, the depth still within 1 %.
 TEST(DenseStereo, MatchedAtHalfSizeTheDepthStaysWithinOnePercent) {
   const Measured half = thesis_scene("clear", std::nullopt, true, 2);
-  std::printf("half size: median depth error %.3f %%, completeness %.1f %%\n", 100 * half.median_rel, 100 * half.completeness);
+  std::printf("half size: median depth error %.3f %%, completeness %.1f %%\n",
+              100 * half.median_rel, 100 * half.completeness);
   EXPECT_LT(half.median_rel, 0.01);
   EXPECT_GT(half.completeness, 0.85);
 }
@@ -89,8 +86,10 @@ TEST(DenseStereo, MatchedAtHalfSizeTheDepthStaysWithinOnePercent) {
 TEST(DenseStereo, BehindAFlatPortPinaxKeepsTheDepthRight) {
   const FlatPort port{0.02, 0.012, 1.0, 1.49, 1.34};
   const Measured with = thesis_scene("clear", port), without = thesis_scene("clear", port, false);
-  std::printf("through the port: median depth error %.3f %% with Pinax (completeness %.1f %%), %.1f %% without\n",
-              100 * with.median_rel, 100 * with.completeness, 100 * without.median_rel);
+  std::printf(
+      "through the port: median depth error %.3f %% with Pinax (completeness %.1f %%), %.1f %% "
+      "without\n",
+      100 * with.median_rel, 100 * with.completeness, 100 * without.median_rel);
   EXPECT_LT(with.median_rel, 0.01);
   EXPECT_GT(without.median_rel, 0.15);
   EXPECT_GT(with.completeness, 0.8);
@@ -104,7 +103,8 @@ TEST(DenseStereo, PointsBeyondTheRangeLimitAreNan) {
   const sim::StereoFrame s = sim::render_stereo(world, sim::camera_pose(scene, Mount{}), cfg, 3);
   DenseConfig dc;
   dc.max_range = 1.0;
-  const DenseFrame d = dense_stereo(bgr(s.left, 640, 480), bgr(s.right, 640, 480), rectify(rig_of(s), dc), dc);
+  const DenseFrame d = dense_stereo(viz::rgb_image(s.left, 640, 480),
+                                    viz::rgb_image(s.right, 640, 480), rectify(rig_of(s), dc), dc);
   int finite = 0;
   for (const auto& p : d.cloud.points)
     if (std::isfinite(p.z())) {
@@ -114,7 +114,8 @@ TEST(DenseStereo, PointsBeyondTheRangeLimitAreNan) {
   EXPECT_GT(finite, 1000);
   for (int v = 0; v < 480; v += 7)
     for (int u = 0; u < 640; u += 7)
-      EXPECT_EQ(std::isfinite(d.disparity.at<float>(v, u)), std::isfinite(d.cloud.points[std::size_t(v) * 640 + u].z()));
+      EXPECT_EQ(std::isfinite(d.disparity.at<float>(v, u)),
+                std::isfinite(d.cloud.points[std::size_t(v) * 640 + u].z()));
 }
 
 // A turned, distorted rig: rectification maps a known point's two images onto one row, and the
@@ -145,11 +146,13 @@ TEST(DenseStereo, RectificationOfATurnedDistortedRig) {
     EXPECT_LT(best, 1.0);
     return at;
   };
-  const Eigen::Vector2d ra = rectified_of(r.left_map1, r.left_map2, a), rb = rectified_of(r.right_map1, r.right_map2, b);
+  const Eigen::Vector2d ra = rectified_of(r.left_map1, r.left_map2, a),
+                        rb = rectified_of(r.right_map1, r.right_map2, b);
   EXPECT_LE(std::abs(ra.y() - rb.y()), 1.0);
   const double z_rect = r.camera.fx * r.baseline / (ra.x() - rb.x());
-  const cv::Vec3d q = r.left_from_rect * cv::Vec3d((ra.x() - r.camera.cx) * z_rect / r.camera.fx,
-                                                   (ra.y() - r.camera.cy) * z_rect / r.camera.fy, z_rect);
+  const cv::Vec3d q =
+      r.left_from_rect * cv::Vec3d((ra.x() - r.camera.cx) * z_rect / r.camera.fx,
+                                   (ra.y() - r.camera.cy) * z_rect / r.camera.fy, z_rect);
   EXPECT_LT((Eigen::Vector3d(q[0], q[1], q[2]) - p).norm(), 0.05);  // to the pixel the search found
 }
 
@@ -170,7 +173,8 @@ TEST(DenseStereo, BadPairsAndRigsAreNamed) {
   EXPECT_THROW(rectify(rig, {}), Error);
   rig.T = Eigen::Vector3d(-0.1, 0, 0);
   DenseConfig c;
-  c.min_range = 0.01, c.max_disparities = 1024;  // 5000 px of disparity, more than the image is wide
+  c.min_range = 0.01,
+  c.max_disparities = 1024;  // 5000 px of disparity, more than the image is wide
   EXPECT_THROW(rectify(rig, c), Error);
   c = {}, c.block_size = 4;
   EXPECT_THROW(rectify(rig, c), Error);

@@ -60,18 +60,21 @@ TEST(CameraFiles, OpenCvFileStorageIsRead) {
   const cv::Mat D = (cv::Mat_<double>(1, 5) << c.distortion[0], c.distortion[1], c.distortion[2],
                      c.distortion[3], c.distortion[4]);
   for (const char* ext : {".yml", ".xml"}) {
-    const std::string mono = (fs::temp_directory_path() / (std::string("uwgrasp_cv_mono") + ext)).string();
+    const std::string mono =
+        (fs::temp_directory_path() / (std::string("uwgrasp_cv_mono") + ext)).string();
     {
       cv::FileStorage f(mono, cv::FileStorage::WRITE);
-      f << "image_width" << 640 << "image_height" << 480 << "camera_matrix" << K << "distortion_coefficients" << D;
+      f << "image_width" << 640 << "image_height" << 480 << "camera_matrix" << K
+        << "distortion_coefficients" << D;
     }
     expect_same(read_camera(mono), c);
-    const std::string rig = (fs::temp_directory_path() / (std::string("uwgrasp_cv_rig") + ext)).string();
+    const std::string rig =
+        (fs::temp_directory_path() / (std::string("uwgrasp_cv_rig") + ext)).string();
     {
       cv::FileStorage f(rig, cv::FileStorage::WRITE);
       const cv::Mat R = cv::Mat::eye(3, 3, CV_64F), T = (cv::Mat_<double>(3, 1) << -0.1, 0, 0);
-      f << "imageSize" << std::vector<int>{640, 480} << "M1" << K << "D1" << D << "M2" << K << "D2" << D << "R" << R
-        << "T" << T;
+      f << "imageSize" << std::vector<int>{640, 480} << "M1" << K << "D1" << D << "M2" << K << "D2"
+        << D << "R" << R << "T" << T;
     }
     const StereoRig s = read_stereo(rig);
     expect_same(s.right, c);
@@ -90,19 +93,28 @@ std::string error_of(const std::string& text, bool stereo = false) {
 }
 
 TEST(CameraFiles, BadFilesNameWhatIsWrong) {
-  EXPECT_NE(error_of("image_width: 640\nimage_height: 480\n").find("missing the camera matrix"), std::string::npos);
-  EXPECT_NE(error_of("image_width: 640\nimage_height: 480\nK: [1, 0, 320, 0, 1, 240, 0, 0]\n").find("K must hold 9"),
+  EXPECT_NE(error_of("image_width: 640\nimage_height: 480\n").find("missing the camera matrix"),
             std::string::npos);
-  EXPECT_NE(error_of("image_width: 640\nimage_height: 480\nK: [0, 0, 320, 0, 0, 240, 0, 0, 1]\n").find("singular"),
+  EXPECT_NE(error_of("image_width: 640\nimage_height: 480\nK: [1, 0, 320, 0, 1, 240, 0, 0]\n")
+                .find("K must hold 9"),
             std::string::npos);
-  EXPECT_NE(error_of("image_height: 480\nK: [500, 0, 320, 0, 500, 240, 0, 0, 1]\n").find("image_width"),
+  EXPECT_NE(error_of("image_width: 640\nimage_height: 480\nK: [0, 0, 320, 0, 0, 240, 0, 0, 1]\n")
+                .find("singular"),
             std::string::npos);
-  EXPECT_NE(error_of("image_width: 640\nimage_height: 480\nK: [a, b]\n").find("not a number"), std::string::npos);
+  EXPECT_NE(
+      error_of("image_height: 480\nK: [500, 0, 320, 0, 500, 240, 0, 0, 1]\n").find("image_width"),
+      std::string::npos);
+  EXPECT_NE(error_of("image_width: 640\nimage_height: 480\nK: [a, b]\n").find("not a number"),
+            std::string::npos);
   EXPECT_NE(error_of("a: [\n").find("not valid YAML"), std::string::npos);
-  EXPECT_NE(error_of("image_width: 640\nimage_height: 480\nleft: {K: [500, 0, 320, 0, 500, 240, 0, 0, 1]}\n", true)
-                .find("missing right"),
-            std::string::npos);
-  const std::string no_file = (fs::temp_directory_path() / "uwgrasp_no_such_calibration.yaml").string();
+  EXPECT_NE(
+      error_of(
+          "image_width: 640\nimage_height: 480\nleft: {K: [500, 0, 320, 0, 500, 240, 0, 0, 1]}\n",
+          true)
+          .find("missing right"),
+      std::string::npos);
+  const std::string no_file =
+      (fs::temp_directory_path() / "uwgrasp_no_such_calibration.yaml").string();
   EXPECT_THROW(read_camera(no_file), Error);
 }
 

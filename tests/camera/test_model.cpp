@@ -53,8 +53,9 @@ TEST(CameraModel, UnprojectInvertsProjectWithDistortion) {
   const cv::Matx33d K(c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1);
   const std::vector<double> D(c.distortion.begin(), c.distortion.end());
   std::vector<cv::Point2d> in{{10, 12}, {600, 400}, {320, 240}}, out;
-  cv::undistortPoints(in, out, K, D, cv::noArray(), cv::noArray(),
-                      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-14));
+  cv::undistortPoints(
+      in, out, K, D, cv::noArray(), cv::noArray(),
+      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-14));
   for (std::size_t i = 0; i < in.size(); ++i) {
     const Eigen::Vector3d r = c.unproject({in[i].x, in[i].y});
     EXPECT_NEAR(r.x(), out[i].x, 1e-6);

@@ -7,6 +7,7 @@
 #include "uwgrasp/camera/rgbd.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/sim/render.hpp"
+#include "uwgrasp/viz/picture.hpp"
 
 namespace {
 using namespace uwgrasp;
@@ -20,8 +21,7 @@ TEST(Rgbd, TheSimulatorsDepthImageGivesItsCloudBack) {
   const sim::Frame f = sim::render_rgbd(world, sim::camera_pose(scene, Mount{}), cfg, 1);
   const auto& k = f.intrinsics;
   cv::Mat depth(k.height, k.width, CV_16UC1, const_cast<std::uint16_t*>(f.depth.data()));
-  cv::Mat colour(k.height, k.width, CV_8UC3);
-  for (std::size_t i = 0; i < f.rgb.size(); ++i) colour.at<cv::Vec3b>(int(i)) = {f.rgb[i].b, f.rgb[i].g, f.rgb[i].r};
+  const cv::Mat colour = viz::rgb_image(f.rgb, k.width, k.height);
   const Cloud c = rgbd_cloud(depth, colour, {k.width, k.height, k.fx, k.fy, k.cx, k.cy, {}});
   ASSERT_EQ(c.size(), f.cloud.size());
   EXPECT_EQ(c.width, std::uint32_t(k.width));
@@ -63,9 +63,11 @@ TEST(Rgbd, ADistortedCameraPutsEachPointOnItsPixelsRay) {
 TEST(Rgbd, BadFramesAreNamed) {
   const Pinhole cam{64, 48, 60.0, 60.0, 32.0, 24.0, {}};
   EXPECT_THROW(rgbd_cloud(cv::Mat(), cv::Mat(), cam), Error);
-  EXPECT_THROW(rgbd_cloud(cv::Mat(48, 64, CV_8UC1), cv::Mat(), cam), Error);           // 8-bit depth
-  EXPECT_THROW(rgbd_cloud(cv::Mat(40, 64, CV_16UC1), cv::Mat(), cam), Error);          // not the camera's size
-  EXPECT_THROW(rgbd_cloud(cv::Mat(48, 64, CV_16UC1), cv::Mat(40, 64, CV_8UC3), cam), Error);  // not registered
+  EXPECT_THROW(rgbd_cloud(cv::Mat(48, 64, CV_8UC1), cv::Mat(), cam), Error);  // 8-bit depth
+  EXPECT_THROW(rgbd_cloud(cv::Mat(40, 64, CV_16UC1), cv::Mat(), cam),
+               Error);  // not the camera's size
+  EXPECT_THROW(rgbd_cloud(cv::Mat(48, 64, CV_16UC1), cv::Mat(40, 64, CV_8UC3), cam),
+               Error);  // not registered
   Pinhole singular = cam;
   singular.fx = 0.0;
   EXPECT_THROW(rgbd_cloud(cv::Mat(48, 64, CV_16UC1), cv::Mat(), singular), Error);

@@ -13,13 +13,15 @@ namespace {
 std::vector<cv::Point3f> board_points(const Board& b) {
   std::vector<cv::Point3f> out;
   for (int r = 0; r < b.rows; ++r)
-    for (int c = 0; c < b.cols; ++c) out.emplace_back(float(c * b.square), float(r * b.square), 0.0f);
+    for (int c = 0; c < b.cols; ++c)
+      out.emplace_back(float(c * b.square), float(r * b.square), 0.0f);
   return out;
 }
 
 void check_board(const Board& b) {
   if (b.cols < 2 || b.rows < 2) throw Error("board: needs at least 2 x 2 inner corners");
-  if (!(b.square > 0.0) || !std::isfinite(b.square)) throw Error("board: the square size must be positive");
+  if (!(b.square > 0.0) || !std::isfinite(b.square))
+    throw Error("board: the square size must be positive");
 }
 
 cv::Size same_size(const std::vector<View>& views) {
@@ -28,8 +30,9 @@ cv::Size same_size(const std::vector<View>& views) {
     if (v.image.empty()) throw Error(v.name + ": empty or unreadable image");
     if (size.area() == 0) size = v.image.size();
     if (v.image.size() != size)
-      throw Error(v.name + ": " + std::to_string(v.image.cols) + " x " + std::to_string(v.image.rows) +
-                  ", but the other images are " + std::to_string(size.width) + " x " + std::to_string(size.height));
+      throw Error(v.name + ": " + std::to_string(v.image.cols) + " x " +
+                  std::to_string(v.image.rows) + ", but the other images are " +
+                  std::to_string(size.width) + " x " + std::to_string(size.height));
   }
   return size;
 }
@@ -37,14 +40,16 @@ cv::Size same_size(const std::vector<View>& views) {
 Pinhole from_cv(const cv::Mat& K, const cv::Mat& D, cv::Size size) {
   Pinhole c;
   c.width = size.width, c.height = size.height;
-  c.fx = K.at<double>(0, 0), c.fy = K.at<double>(1, 1), c.cx = K.at<double>(0, 2), c.cy = K.at<double>(1, 2);
+  c.fx = K.at<double>(0, 0), c.fy = K.at<double>(1, 1), c.cx = K.at<double>(0, 2),
+  c.cy = K.at<double>(1, 2);
   for (int i = 0; i < 5 && i < int(D.total()); ++i) c.distortion[std::size_t(i)] = D.at<double>(i);
   return c;
 }
 
 // RMS of the reprojection of one view's corners, px.
 double view_rms(const std::vector<cv::Point3f>& object, const std::vector<cv::Point2f>& corners,
-                const cv::Mat& rvec, const cv::Mat& tvec, const cv::Mat& K, const cv::Mat& D, double& sum2) {
+                const cv::Mat& rvec, const cv::Mat& tvec, const cv::Mat& K, const cv::Mat& D,
+                double& sum2) {
   std::vector<cv::Point2f> projected;
   cv::projectPoints(object, rvec, tvec, K, D, projected);
   double s = 0.0;
@@ -64,15 +69,18 @@ std::string names(const std::vector<std::string>& v) {
 
 void enough(std::size_t used, const std::vector<std::string>& rejected) {
   if (used >= 3) return;
-  throw Error("calibration needs the board in at least 3 views, found it in " + std::to_string(used) +
+  throw Error("calibration needs the board in at least 3 views, found it in " +
+              std::to_string(used) +
               (rejected.empty() ? std::string() : "; not found in: " + names(rejected)));
 }
 }  // namespace
 
 std::vector<cv::Point2f> find_corners(const cv::Mat& image, const Board& board) {
   cv::Mat grey;
-  if (image.channels() == 3) cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
-  else grey = image;
+  if (image.channels() == 3)
+    cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  else
+    grey = image;
   std::vector<cv::Point2f> corners;
   const cv::Size pattern(board.cols, board.rows);
   if (!cv::findChessboardCorners(grey, pattern, corners,
@@ -84,8 +92,12 @@ std::vector<cv::Point2f> find_corners(const cv::Mat& image, const Board& board) 
   for (int r = 0; r < board.rows; ++r)
     for (int c = 0; c < board.cols; ++c) {
       const cv::Point2f p = corners[std::size_t(r * board.cols + c)];
-      if (c + 1 < board.cols) spacing = std::min(spacing, double(cv::norm(corners[std::size_t(r * board.cols + c + 1)] - p)));
-      if (r + 1 < board.rows) spacing = std::min(spacing, double(cv::norm(corners[std::size_t((r + 1) * board.cols + c)] - p)));
+      if (c + 1 < board.cols)
+        spacing =
+            std::min(spacing, double(cv::norm(corners[std::size_t(r * board.cols + c + 1)] - p)));
+      if (r + 1 < board.rows)
+        spacing =
+            std::min(spacing, double(cv::norm(corners[std::size_t((r + 1) * board.cols + c)] - p)));
     }
   const int half = std::clamp(int(0.4 * spacing), 2, 11);
   cv::cornerSubPix(grey, corners, cv::Size(half, half), cv::Size(-1, -1),
@@ -101,8 +113,10 @@ MonoCalibration calibrate(const std::vector<View>& views, const Board& board) {
   std::vector<std::string> used;
   for (const View& v : views) {
     auto c = find_corners(v.image, board);
-    if (c.empty()) out.rejected.push_back(v.name);
-    else corners.push_back(std::move(c)), used.push_back(v.name);
+    if (c.empty())
+      out.rejected.push_back(v.name);
+    else
+      corners.push_back(std::move(c)), used.push_back(v.name);
   }
   enough(corners.size(), out.rejected);
   const std::vector<std::vector<cv::Point3f>> object(corners.size(), board_points(board));
@@ -120,8 +134,8 @@ StereoCalibration calibrate_stereo(const std::vector<View>& left, const std::vec
                                    const Board& board) {
   check_board(board);
   if (left.size() != right.size())
-    throw Error("stereo calibration: " + std::to_string(left.size()) + " left but " + std::to_string(right.size()) +
-                " right images");
+    throw Error("stereo calibration: " + std::to_string(left.size()) + " left but " +
+                std::to_string(right.size()) + " right images");
   std::vector<View> all = left;
   all.insert(all.end(), right.begin(), right.end());
   const cv::Size size = same_size(all);
@@ -130,8 +144,10 @@ StereoCalibration calibrate_stereo(const std::vector<View>& left, const std::vec
   std::vector<std::string> used;
   for (std::size_t i = 0; i < left.size(); ++i) {
     auto a = find_corners(left[i].image, board), b = find_corners(right[i].image, board);
-    if (a.empty() || b.empty()) out.rejected.push_back(left[i].name + (a.empty() ? "" : " (right: " + right[i].name + ")"));
-    else cl.push_back(std::move(a)), cr.push_back(std::move(b)), used.push_back(left[i].name);
+    if (a.empty() || b.empty())
+      out.rejected.push_back(left[i].name + (a.empty() ? "" : " (right: " + right[i].name + ")"));
+    else
+      cl.push_back(std::move(a)), cr.push_back(std::move(b)), used.push_back(left[i].name);
   }
   enough(cl.size(), out.rejected);
   const std::vector<std::vector<cv::Point3f>> object(cl.size(), board_points(board));
@@ -140,8 +156,9 @@ StereoCalibration calibrate_stereo(const std::vector<View>& left, const std::vec
   std::vector<cv::Mat> rv, tv;
   out.left_rms = cv::calibrateCamera(object, cl, size, K1, D1, rv, tv);
   out.right_rms = cv::calibrateCamera(object, cr, size, K2, D2, rv, tv);
-  out.rms = cv::stereoCalibrate(object, cl, cr, K1, D1, K2, D2, size, R, T, E, F, cv::CALIB_USE_INTRINSIC_GUESS,
-                                cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-6));
+  out.rms = cv::stereoCalibrate(
+      object, cl, cr, K1, D1, K2, D2, size, R, T, E, F, cv::CALIB_USE_INTRINSIC_GUESS,
+      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-6));
   out.rig.left = from_cv(K1, D1, size), out.rig.right = from_cv(K2, D2, size);
   for (int r = 0; r < 3; ++r) {
     out.rig.T[r] = T.at<double>(r);

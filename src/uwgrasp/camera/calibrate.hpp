@@ -37,8 +37,8 @@ struct MonoCalibration {
 struct StereoCalibration {
   StereoRig rig;
   double rms = 0.0;
-  std::vector<ViewError> views;       // the used pairs (named by the left image)
-  std::vector<std::string> rejected;  // pairs where either image misses the board
+  std::vector<ViewError> views;            // the used pairs (named by the left image)
+  std::vector<std::string> rejected;       // pairs where either image misses the board
   double left_rms = 0.0, right_rms = 0.0;  // each camera's own calibration
 };
 

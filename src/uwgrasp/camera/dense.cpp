@@ -14,13 +14,16 @@ namespace uwgrasp::camera {
 
 namespace {
 cv::Matx33d K_of(const Pinhole& c) { return {c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1}; }
-cv::Mat D_of(const Pinhole& c) { return cv::Mat(c.distortion.size(), 1, CV_64F, const_cast<double*>(c.distortion.data())).clone(); }
+cv::Mat D_of(const Pinhole& c) {
+  return cv::Mat(c.distortion.size(), 1, CV_64F, const_cast<double*>(c.distortion.data())).clone();
+}
 
 // A rig that is already rectified (the simulator's, or a camera's own rectified output): same
 // lens, no distortion, the right camera straight along the left's +x. Matching needs no remap.
 bool already_rectified(const StereoRig& rig) {
   const auto same = [](const Pinhole& a, const Pinhole& b) {
-    return a.fx == b.fx && a.fy == b.fy && a.cx == b.cx && a.cy == b.cy && a.width == b.width && a.height == b.height;
+    return a.fx == b.fx && a.fy == b.fy && a.cx == b.cx && a.cy == b.cy && a.width == b.width &&
+           a.height == b.height;
   };
   return same(rig.left, rig.right) && !rig.left.distorted() && !rig.right.distorted() &&
          (rig.R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-12 && rig.T.x() < 0.0 &&
@@ -37,10 +40,12 @@ void rectify_maps(const StereoRig& rig, Rectification& r, int map_type) {
   const cv::Vec3d T(rig.T.x(), rig.T.y(), rig.T.z());
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) R(i, j) = rig.R(i, j);
-  cv::stereoRectify(K_of(rig.left), D_of(rig.left), K_of(rig.right), D_of(rig.right), size, R, T, R1, R2, P1, P2, Q,
-                    cv::CALIB_ZERO_DISPARITY, 0.0);
-  cv::initUndistortRectifyMap(K_of(rig.left), D_of(rig.left), R1, P1, size, map_type, r.left_map1, r.left_map2);
-  cv::initUndistortRectifyMap(K_of(rig.right), D_of(rig.right), R2, P2, size, map_type, r.right_map1, r.right_map2);
+  cv::stereoRectify(K_of(rig.left), D_of(rig.left), K_of(rig.right), D_of(rig.right), size, R, T,
+                    R1, R2, P1, P2, Q, cv::CALIB_ZERO_DISPARITY, 0.0);
+  cv::initUndistortRectifyMap(K_of(rig.left), D_of(rig.left), R1, P1, size, map_type, r.left_map1,
+                              r.left_map2);
+  cv::initUndistortRectifyMap(K_of(rig.right), D_of(rig.right), R2, P2, size, map_type,
+                              r.right_map1, r.right_map2);
   r.camera = {size.width, size.height, P1(0, 0), P1(1, 1), P1(0, 2), P1(1, 2), {}};
   r.baseline = std::abs(P2(0, 3) / P2(0, 0));
   r.left_from_rect = R1.t();
@@ -50,7 +55,8 @@ void disparity_range(Rectification& r, const DenseConfig& cfg) {
   const double fB = r.camera.fx * r.baseline;
   r.min_disparity = int(std::floor(fB / cfg.max_range));
   const int largest = int(std::ceil(fB / cfg.min_range));
-  r.num_disparities = std::min(int(cfg.max_disparities) / 16 * 16, ((largest - r.min_disparity) / 16 + 1) * 16);
+  r.num_disparities =
+      std::min(int(cfg.max_disparities) / 16 * 16, ((largest - r.min_disparity) / 16 + 1) * 16);
   if (r.min_disparity + r.num_disparities >= r.camera.width)
     throw Error("stereo: the disparities for depths " + std::to_string(cfg.min_range) + "-" +
                 std::to_string(cfg.max_range) + " m (" + std::to_string(r.min_disparity) + "-" +
@@ -65,13 +71,15 @@ cv::Ptr<cv::StereoSGBM> matcher(int min_disparity, int num_disparities, const De
   const int block = int(cfg.block_size), area = block * block;  // grey: one channel
   // P1, P2: the smoothness penalties for disparity steps of 1 and more (OpenCV's suggested scale).
   return cv::StereoSGBM::create(min_disparity, num_disparities, block, 8 * area, 32 * area,
-                                cfg.left_right_check ? int(cfg.lr_max_diff) : -1, 0, int(cfg.uniqueness),
-                                int(cfg.speckle_window), int(cfg.speckle_range), mode);
+                                cfg.left_right_check ? int(cfg.lr_max_diff) : -1, 0,
+                                int(cfg.uniqueness), int(cfg.speckle_window),
+                                int(cfg.speckle_range), mode);
 }
 
 // SGBM's disparities (x16 fixed point) of the grey rectified pair matched at 1/downscale of its
 // size; `valid` is the smallest value that is a match.
-cv::Mat match(const cv::Mat& gl, const cv::Mat& gr, const Rectification& r, const DenseConfig& cfg, int& valid) {
+cv::Mat match(const cv::Mat& gl, const cv::Mat& gr, const Rectification& r, const DenseConfig& cfg,
+              int& valid) {
   const int s = int(cfg.downscale);
   cv::Mat ml = gl, mr = gr;
   if (s > 1) {
@@ -93,33 +101,48 @@ cv::Mat match(const cv::Mat& gl, const cv::Mat& gr, const Rectification& r, cons
 }  // namespace
 
 void check(const DenseConfig& c) {
-  const auto fail = [](const std::string& key, const std::string& why) { throw Error("stereo." + key + " " + why); };
+  const auto fail = [](const std::string& key, const std::string& why) {
+    throw Error("stereo." + key + " " + why);
+  };
   if (!(c.min_range > 0.0) || !std::isfinite(c.min_range)) fail("min_range", "must be positive");
-  if (!(c.max_range > c.min_range) || !std::isfinite(c.max_range)) fail("max_range", "must exceed min_range");
-  if (c.max_disparities < 16 || c.max_disparities > 1024) fail("max_disparities", "must be in [16, 1024]");
-  if (c.block_size < 1 || c.block_size > 21 || c.block_size % 2 == 0) fail("block_size", "must be odd, 1-21");
+  if (!(c.max_range > c.min_range) || !std::isfinite(c.max_range))
+    fail("max_range", "must exceed min_range");
+  if (c.max_disparities < 16 || c.max_disparities > 1024)
+    fail("max_disparities", "must be in [16, 1024]");
+  if (c.block_size < 1 || c.block_size > 21 || c.block_size % 2 == 0)
+    fail("block_size", "must be odd, 1-21");
   if (c.uniqueness > 100) fail("uniqueness", "must be a percentage");
   if (c.downscale < 1 || c.downscale > 4) fail("downscale", "must be 1-4");
   if (c.lr_max_diff > 64) fail("lr_max_diff", "must be <= 64 px");
-  if (c.speckle_window > 100000 || c.speckle_range > 64) fail("speckle_window", "or speckle_range is absurd");
-  if (c.mode != "sgbm" && c.mode != "3way" && c.mode != "hh") fail("mode", "must be sgbm, 3way or hh");
-  if (!(c.port_reference > 0.0) || !std::isfinite(c.port_reference)) fail("port_reference", "must be positive");
+  if (c.speckle_window > 100000 || c.speckle_range > 64)
+    fail("speckle_window", "or speckle_range is absurd");
+  if (c.mode != "sgbm" && c.mode != "3way" && c.mode != "hh")
+    fail("mode", "must be sgbm, 3way or hh");
+  if (!(c.port_reference > 0.0) || !std::isfinite(c.port_reference))
+    fail("port_reference", "must be positive");
 }
 
-Rectification rectify(const StereoRig& rig, const DenseConfig& cfg, const std::optional<FlatPort>& port) {
+Rectification rectify(const StereoRig& rig, const DenseConfig& cfg,
+                      const std::optional<FlatPort>& port) {
   check(rig, "stereo rig");
   check(cfg);
   if (rig.left.width != rig.right.width || rig.left.height != rig.right.height)
     throw Error("stereo rig: the two cameras' image sizes differ");
   const Eigen::Vector3d right_centre = -rig.R.transpose() * rig.T;  // in the left camera's frame
   if (std::abs(right_centre.x()) < std::abs(right_centre.y()))
-    throw Error("stereo rig: the right camera is above or below the left one; only side-by-side rigs are matched");
+    throw Error(
+        "stereo rig: the right camera is above or below the left one; only side-by-side rigs are "
+        "matched");
   if (right_centre.x() < 0.0)
-    throw Error("stereo rig: the right camera is on the left camera's left: swap the images (or the calibration)");
+    throw Error(
+        "stereo rig: the right camera is on the left camera's left: swap the images (or the "
+        "calibration)");
   Rectification r;
   if (!port) {
-    if (already_rectified(rig)) r.camera = rig.left, r.baseline = rig.baseline();
-    else rectify_maps(rig, r, CV_16SC2);
+    if (already_rectified(rig))
+      r.camera = rig.left, r.baseline = rig.baseline();
+    else
+      rectify_maps(rig, r, CV_16SC2);
   } else {
     // Each camera by its Pinax virtual camera: x = x' + c e_z in each, so x_r' = R x_l' + T'.
     const Pinax pl = make_pinax(rig.left, *port, cfg.port_reference);
@@ -139,15 +162,16 @@ Rectification rectify(const StereoRig& rig, const DenseConfig& cfg, const std::o
   return r;
 }
 
-DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectification& rect, const DenseConfig& cfg,
-                        const std::string& what, StageTimer* timer) {
+DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectification& rect,
+                        const DenseConfig& cfg, const std::string& what, StageTimer* timer) {
   const auto stage = [&](const char* name) {
     if (timer) timer->start(name);
   };
   if (left.empty() || right.empty()) throw Error(what + ": an image is empty");
   if (left.size() != right.size() || left.type() != right.type())
     throw Error(what + ": the images differ in size or type (" + std::to_string(left.cols) + " x " +
-                std::to_string(left.rows) + " and " + std::to_string(right.cols) + " x " + std::to_string(right.rows) + ")");
+                std::to_string(left.rows) + " and " + std::to_string(right.cols) + " x " +
+                std::to_string(right.rows) + ")");
   if (left.cols != rect.camera.width || left.rows != rect.camera.height)
     throw Error(what + ": " + std::to_string(left.cols) + " x " + std::to_string(left.rows) +
                 " images, but the calibration is for " + std::to_string(rect.camera.width) + " x " +
@@ -165,7 +189,9 @@ DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectifi
   }
   // Matched on grey: colour triples the cost for little gain on underwater images.
   cv::Mat gl = out.left_rectified, gr = right_rect, raw;
-  if (left.channels() == 3) cv::cvtColor(out.left_rectified, gl, cv::COLOR_BGR2GRAY), cv::cvtColor(right_rect, gr, cv::COLOR_BGR2GRAY);
+  if (left.channels() == 3)
+    cv::cvtColor(out.left_rectified, gl, cv::COLOR_BGR2GRAY),
+        cv::cvtColor(right_rect, gr, cv::COLOR_BGR2GRAY);
   stage("match");
   int valid = 0;
   raw = match(gl, gr, rect, cfg, valid);
@@ -188,7 +214,8 @@ DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectifi
       auto* disp = out.disparity.ptr<float>(v);
       for (int u = 0; u < W; ++u) {
         const std::size_t i = std::size_t(v) * c.width + std::size_t(u);
-        c.colors[i] = bgr ? Rgb8{px[3 * u + 2], px[3 * u + 1], px[3 * u]} : Rgb8{px[u], px[u], px[u]};
+        c.colors[i] =
+            bgr ? Rgb8{px[3 * u + 2], px[3 * u + 1], px[3 * u]} : Rgb8{px[u], px[u], px[u]};
         c.points[i] = Eigen::Vector3f::Constant(nan);
         disp[u] = nan;
         // SGBM's disparities are fixed point with 4 fractional bits, in the matched image's pixels.
@@ -198,7 +225,8 @@ DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectifi
         const double z = fB / d;  // eq. 3.25
         if (z > cfg.max_range) continue;
         disp[u] = float(d);
-        const cv::Vec3d p = M * cv::Vec3d((u - k.cx) * z / k.fx, (v - k.cy) * z / k.fy, z) + rect.left_origin;
+        const cv::Vec3d p =
+            M * cv::Vec3d((u - k.cx) * z / k.fx, (v - k.cy) * z / k.fy, z) + rect.left_origin;
         c.points[i] = Eigen::Vector3f(float(p[0]), float(p[1]), float(p[2]));
       }
     }

@@ -24,13 +24,16 @@ std::string read_text(const std::string& path) {
 
 bool opencv_storage(const std::string& text) {
   const auto start = text.find_first_not_of(" \t\r\n");
-  return start != std::string::npos && (text.compare(start, 5, "%YAML") == 0 || text.compare(start, 5, "<?xml") == 0);
+  return start != std::string::npos &&
+         (text.compare(start, 5, "%YAML") == 0 || text.compare(start, 5, "<?xml") == 0);
 }
 
 // A matrix of `n` numbers from a YAML node: a flat list, or ROS's {rows, cols, data}.
-std::vector<double> numbers(const YAML::Node& node, const std::string& file, const std::string& key) {
+std::vector<double> numbers(const YAML::Node& node, const std::string& file,
+                            const std::string& key) {
   const YAML::Node list = node.IsMap() ? node["data"] : node;
-  if (!list || !list.IsSequence()) throw Error(file + ": " + key + " must be a list of numbers (or {rows, cols, data})");
+  if (!list || !list.IsSequence())
+    throw Error(file + ": " + key + " must be a list of numbers (or {rows, cols, data})");
   std::vector<double> out;
   for (const auto& v : list) {
     try {
@@ -44,10 +47,14 @@ std::vector<double> numbers(const YAML::Node& node, const std::string& file, con
 
 Pinhole from_k_d(const std::vector<double>& K, const std::vector<double>& D, int width, int height,
                  const std::string& file, const std::string& kname, const std::string& dname) {
-  if (K.size() != 9) throw Error(file + ": " + kname + " must hold 9 numbers (a 3 x 3 matrix), has " + std::to_string(K.size()));
+  if (K.size() != 9)
+    throw Error(file + ": " + kname + " must hold 9 numbers (a 3 x 3 matrix), has " +
+                std::to_string(K.size()));
   if (D.size() > 5)
     for (std::size_t i = 5; i < D.size(); ++i)
-      if (D[i] != 0.0) throw Error(file + ": " + dname + " has more than plumb_bob's 5 coefficients (k1 k2 p1 p2 k3)");
+      if (D[i] != 0.0)
+        throw Error(file + ": " + dname +
+                    " has more than plumb_bob's 5 coefficients (k1 k2 p1 p2 k3)");
   Pinhole c;
   c.width = width, c.height = height;
   c.fx = K[0], c.fy = K[4], c.cx = K[2], c.cy = K[5];
@@ -75,7 +82,8 @@ YAML::Node load(const std::string& text, const std::string& file) {
 }
 
 // OpenCV FileStorage: the first of `names` present, as a flat list of doubles.
-std::optional<std::vector<double>> storage_matrix(const cv::FileStorage& fs, std::initializer_list<const char*> names) {
+std::optional<std::vector<double>> storage_matrix(const cv::FileStorage& fs,
+                                                  std::initializer_list<const char*> names) {
   for (const char* n : names) {
     const cv::FileNode node = fs[n];
     if (node.empty()) continue;
@@ -88,7 +96,8 @@ std::optional<std::vector<double>> storage_matrix(const cv::FileStorage& fs, std
 }
 
 std::pair<int, int> storage_size(const cv::FileStorage& fs, const std::string& file) {
-  if (!fs["image_width"].empty() && !fs["image_height"].empty()) return {int(fs["image_width"]), int(fs["image_height"])};
+  if (!fs["image_width"].empty() && !fs["image_height"].empty())
+    return {int(fs["image_width"]), int(fs["image_height"])};
   for (const char* n : {"image_size", "imageSize"}) {
     if (fs[n].empty()) continue;
     std::vector<int> v;
@@ -125,8 +134,10 @@ Pinhole read_camera(const std::string& path) {
   if (opencv_storage(text)) {
     const cv::FileStorage fs = open_storage(text, path);
     const auto K = storage_matrix(fs, {"camera_matrix", "cameraMatrix", "K", "M1", "K1"});
-    if (!K) throw Error(path + ": missing the camera matrix (camera_matrix, cameraMatrix, K or M1)");
-    const auto D = storage_matrix(fs, {"distortion_coefficients", "distCoeffs", "D", "D1"}).value_or(std::vector<double>{});
+    if (!K)
+      throw Error(path + ": missing the camera matrix (camera_matrix, cameraMatrix, K or M1)");
+    const auto D = storage_matrix(fs, {"distortion_coefficients", "distCoeffs", "D", "D1"})
+                       .value_or(std::vector<double>{});
     const auto [w, h] = storage_size(fs, path);
     c = from_k_d(*K, D, w, h, path, "camera_matrix", "distortion_coefficients");
   } else {
@@ -134,8 +145,10 @@ Pinhole read_camera(const std::string& path) {
     const char* kname = root["camera_matrix"] ? "camera_matrix" : "K";
     const char* dname = root["distortion_coefficients"] ? "distortion_coefficients" : "D";
     if (!root[kname]) throw Error(path + ": missing the camera matrix (camera_matrix or K)");
-    const std::vector<double> D = root[dname] ? numbers(root[dname], path, dname) : std::vector<double>{};
-    c = from_k_d(numbers(root[kname], path, kname), D, integer(root["image_width"], path, "image_width"),
+    const std::vector<double> D =
+        root[dname] ? numbers(root[dname], path, dname) : std::vector<double>{};
+    c = from_k_d(numbers(root[kname], path, kname), D,
+                 integer(root["image_width"], path, "image_width"),
                  integer(root["image_height"], path, "image_height"), path, kname, dname);
   }
   check(c, path);
@@ -154,21 +167,25 @@ StereoRig read_stereo(const std::string& path) {
       if (!m) throw Error(path + ": missing " + what);
       return *m;
     };
-    s.left = from_k_d(need({"M1", "K1"}, "M1 (the left camera matrix)"), storage_matrix(fs, {"D1"}).value_or(std::vector<double>{}),
-                      w, h, path, "M1", "D1");
-    s.right = from_k_d(need({"M2", "K2"}, "M2 (the right camera matrix)"), storage_matrix(fs, {"D2"}).value_or(std::vector<double>{}),
-                       w, h, path, "M2", "D2");
+    s.left = from_k_d(need({"M1", "K1"}, "M1 (the left camera matrix)"),
+                      storage_matrix(fs, {"D1"}).value_or(std::vector<double>{}), w, h, path, "M1",
+                      "D1");
+    s.right = from_k_d(need({"M2", "K2"}, "M2 (the right camera matrix)"),
+                       storage_matrix(fs, {"D2"}).value_or(std::vector<double>{}), w, h, path, "M2",
+                       "D2");
     R = need({"R"}, "R"), T = need({"T"}, "T");
   } else {
     const YAML::Node root = load(text, path);
-    const int w = integer(root["image_width"], path, "image_width"), h = integer(root["image_height"], path, "image_height");
+    const int w = integer(root["image_width"], path, "image_width"),
+              h = integer(root["image_height"], path, "image_height");
     for (const char* side : {"left", "right"}) {
       const YAML::Node n = root[side];
       if (!n || !n.IsMap()) throw Error(path + ": missing " + side + " (its K and D)");
       const std::string k = std::string(side) + ".K", d = std::string(side) + ".D";
       if (!n["K"]) throw Error(path + ": missing " + k);
       (std::string(side) == "left" ? s.left : s.right) =
-          from_k_d(numbers(n["K"], path, k), n["D"] ? numbers(n["D"], path, d) : std::vector<double>{}, w, h, path, k, d);
+          from_k_d(numbers(n["K"], path, k),
+                   n["D"] ? numbers(n["D"], path, d) : std::vector<double>{}, w, h, path, k, d);
     }
     if (!root["R"]) throw Error(path + ": missing R");
     if (!root["T"]) throw Error(path + ": missing T");
@@ -187,8 +204,9 @@ std::string camera_yaml(const Pinhole& c, const std::string& name) {
   const double K[9] = {c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1};
   const double R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   const double P[12] = {c.fx, 0, c.cx, 0, 0, c.fy, c.cy, 0, 0, 0, 1, 0};
-  out << "# ROS camera_info (uwgrasp calibrate)\nimage_width: " << c.width << "\nimage_height: " << c.height
-      << "\ncamera_name: " << name << "\ncamera_matrix:\n  rows: 3\n  cols: 3\n";
+  out << "# ROS camera_info (uwgrasp calibrate)\nimage_width: " << c.width
+      << "\nimage_height: " << c.height << "\ncamera_name: " << name
+      << "\ncamera_matrix:\n  rows: 3\n  cols: 3\n";
   emit_matrix(out, "data", K, 9, "  ");
   out << "distortion_model: plumb_bob\ndistortion_coefficients:\n  rows: 1\n  cols: 5\n";
   emit_matrix(out, "data", c.distortion.data(), 5, "  ");

@@ -48,8 +48,8 @@ void check(const Pinhole& c, const std::string& what) {
   if (c.width < 8 || c.height < 8) fail("image size", "must be at least 8 x 8 pixels");
   if (!(std::isfinite(c.fx) && c.fx > 0.0) || !(std::isfinite(c.fy) && c.fy > 0.0))
     fail("K", "must have positive, finite focal lengths fx and fy (the matrix is singular)");
-  if (!std::isfinite(c.cx) || !std::isfinite(c.cy) || c.cx < -0.5 || c.cy < -0.5 || c.cx > c.width ||
-      c.cy > c.height)
+  if (!std::isfinite(c.cx) || !std::isfinite(c.cy) || c.cx < -0.5 || c.cy < -0.5 ||
+      c.cx > c.width || c.cy > c.height)
     fail("K", "has its principal point outside the image");
   for (const double d : c.distortion)
     if (!std::isfinite(d)) fail("D", "must be finite");
@@ -58,10 +58,12 @@ void check(const Pinhole& c, const std::string& what) {
 void check(const StereoRig& s, const std::string& what) {
   check(s.left, what + " (left camera)");
   check(s.right, what + " (right camera)");
-  if (!s.R.allFinite() || (s.R.transpose() * s.R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
+  if (!s.R.allFinite() ||
+      (s.R.transpose() * s.R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
       std::abs(s.R.determinant() - 1.0) > 1e-6)
     throw Error(what + ": R is not a rotation");
-  if (!s.T.allFinite() || !(s.T.norm() > 0.0)) throw Error(what + ": T must be a finite, non-zero baseline");
+  if (!s.T.allFinite() || !(s.T.norm() > 0.0))
+    throw Error(what + ": T must be a finite, non-zero baseline");
 }
 
 }  // namespace uwgrasp::camera

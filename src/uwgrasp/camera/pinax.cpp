@@ -24,9 +24,11 @@ double best_centre(const Pinhole& air, const FlatPort& port, double& spread) {
   double num = 0.0, den = 0.0;
   std::vector<PortRay> rays;
   for (int v = 0; v <= air.height; v += std::max(1, air.height / 24))
-    for (int u = 0; u <= air.width; u += std::max(1, air.width / 32)) rays.push_back(water_ray(air, port, {u, v}));
+    for (int u = 0; u <= air.width; u += std::max(1, air.width / 32))
+      rays.push_back(water_ray(air, port, {u, v}));
   for (const PortRay& r : rays) {
-    const V3 d = r.direction.normalized(), e = V3::UnitZ() - d * d.z(), a = -r.origin + d * d.dot(r.origin);
+    const V3 d = r.direction.normalized(), e = V3::UnitZ() - d * d.z(),
+             a = -r.origin + d * d.dot(r.origin);
     num -= e.dot(a), den += e.dot(e);
   }
   const double z = den > 1e-15 ? num / den : 0.0;
@@ -43,7 +45,8 @@ double best_centre(const Pinhole& air, const FlatPort& port, double& spread) {
 double virtual_focal(const Pinax& p) {
   const Pinhole& a = p.air;
   double f = 1e300;
-  const Eigen::Vector2d edges[4] = {{0.0, a.cy}, {a.width - 1.0, a.cy}, {a.cx, 0.0}, {a.cx, a.height - 1.0}};
+  const Eigen::Vector2d edges[4] = {
+      {0.0, a.cy}, {a.width - 1.0, a.cy}, {a.cx, 0.0}, {a.cx, a.height - 1.0}};
   for (int i = 0; i < 4; ++i) {
     const PortRay r = water_ray(a, p.port, edges[i]);
     const V3 x = r.origin + r.direction * (p.reference - r.origin.z()) - V3(0, 0, p.centre_z);
@@ -72,7 +75,8 @@ Pinax make_pinax(const Pinhole& air, const FlatPort& port, double reference) {
       for (int u = 0; u < air.width; ++u) {
         // The virtual pixel's ray from the virtual centre, to the reference depth; the raw pixel
         // is where the real camera sees that point through the port.
-        const V3 x = V3(0, 0, p.centre_z) + V3((u - air.cx) / f, (v - air.cy) / f, 1.0) * (reference - p.centre_z);
+        const V3 x = V3(0, 0, p.centre_z) +
+                     V3((u - air.cx) / f, (v - air.cy) / f, 1.0) * (reference - p.centre_z);
         const auto a = direction_to(port, x);
         const Eigen::Vector2d raw = a ? air.project(*a) : Eigen::Vector2d(-1.0, -1.0);
         p.map_x.at<float>(v, u) = float(raw.x()), p.map_y.at<float>(v, u) = float(raw.y());

@@ -16,13 +16,13 @@
 namespace uwgrasp::camera {
 
 struct Pinax {
-  Pinhole air;                 // the physical camera, calibrated in air (with its distortion)
+  Pinhole air;  // the physical camera, calibrated in air (with its distortion)
   FlatPort port;
-  Pinhole virtual_camera;      // same image size, no distortion
-  double centre_z = 0.0;       // the virtual centre on the optical axis, in the camera's frame, m
-  double reference = 2.0;      // m: the distance the map is exact at
-  double spread = 0.0;         // RMS distance of the in-water rays from the virtual centre, m
-  cv::Mat map_x, map_y;        // CV_32FC1: virtual pixel -> raw pixel (NaN-free; -1 outside)
+  Pinhole virtual_camera;  // same image size, no distortion
+  double centre_z = 0.0;   // the virtual centre on the optical axis, in the camera's frame, m
+  double reference = 2.0;  // m: the distance the map is exact at
+  double spread = 0.0;     // RMS distance of the in-water rays from the virtual centre, m
+  cv::Mat map_x, map_y;    // CV_32FC1: virtual pixel -> raw pixel (NaN-free; -1 outside)
 };
 
 // Throws Error (port.*) for a port check_port refuses, or one whose rays reflect totally inside

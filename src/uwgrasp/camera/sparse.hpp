@@ -15,17 +15,17 @@ namespace uwgrasp::camera {
 
 struct SparseConfig {
   std::string detector = "sift";  // "sift" or "harris"
-  int max_features = 3000;         // per image
-  double ratio = 0.75;             // best / second-best descriptor distance must be below this
-  bool cross_check = true;         // the right keypoint's best match must be the left one back
-  double epipolar_px = 1.5;        // px from the epipolar line (in the ideal right image)
-  double max_range = 6.0;          // m: farther or behind-the-camera points are dropped
+  int max_features = 3000;        // per image
+  double ratio = 0.75;            // best / second-best descriptor distance must be below this
+  bool cross_check = true;        // the right keypoint's best match must be the left one back
+  double epipolar_px = 1.5;       // px from the epipolar line (in the ideal right image)
+  double max_range = 6.0;         // m: farther or behind-the-camera points are dropped
 };
 
 struct SparseMatch {
-  Eigen::Vector2d left, right;   // raw pixels
-  Eigen::Vector3d point;         // in the left camera's optical frame, m
-  double epipolar = 0.0;         // px (in the ideal, or virtual, right image)
+  Eigen::Vector2d left, right;  // raw pixels
+  Eigen::Vector3d point;        // in the left camera's optical frame, m
+  double epipolar = 0.0;        // px (in the ideal, or virtual, right image)
 };
 
 struct SparseResult {
@@ -36,6 +36,7 @@ struct SparseResult {
 
 // Throws Error naming the field for a bad config, or for images of different sizes. The
 // triangulator carries the rig (and the port's Pinax cameras, if any).
-SparseResult sparse_stereo(const cv::Mat& left, const cv::Mat& right, const Triangulator& tri, const SparseConfig& cfg);
+SparseResult sparse_stereo(const cv::Mat& left, const cv::Mat& right, const Triangulator& tri,
+                           const SparseConfig& cfg);
 
 }  // namespace uwgrasp::camera

@@ -5,8 +5,8 @@
 
 namespace uwgrasp::camera {
 
-Eigen::Vector3d triangulate_dlt(const Projection& P1, const Projection& P2, const Eigen::Vector2d& x1,
-                                const Eigen::Vector2d& x2) {
+Eigen::Vector3d triangulate_dlt(const Projection& P1, const Projection& P2,
+                                const Eigen::Vector2d& x1, const Eigen::Vector2d& x2) {
   Eigen::Matrix4d A;  // two rows per view
   A.row(0) = x1.x() * P1.row(2) - P1.row(0);
   A.row(1) = x1.y() * P1.row(2) - P1.row(1);
@@ -26,7 +26,8 @@ StereoRig virtual_rig(const StereoRig& air, const Pinax& left, const Pinax& righ
   return v;
 }
 
-Triangulator::Triangulator(const StereoRig& rig, const std::optional<FlatPort>& port, double port_reference)
+Triangulator::Triangulator(const StereoRig& rig, const std::optional<FlatPort>& port,
+                           double port_reference)
     : used_(rig) {
   check(rig, "stereo rig");
   if (!port) return;
@@ -36,7 +37,8 @@ Triangulator::Triangulator(const StereoRig& rig, const std::optional<FlatPort>& 
 }
 
 namespace {
-std::optional<Eigen::Vector3d> ray(const Pinhole& used, const std::optional<Pinax>& pinax, const Eigen::Vector2d& px) {
+std::optional<Eigen::Vector3d> ray(const Pinhole& used, const std::optional<Pinax>& pinax,
+                                   const Eigen::Vector2d& px) {
   if (!pinax) return used.unproject(px);
   const auto v = virtual_pixel(*pinax, px);
   if (!v) return std::nullopt;
@@ -44,12 +46,15 @@ std::optional<Eigen::Vector3d> ray(const Pinhole& used, const std::optional<Pina
 }
 }  // namespace
 
-std::optional<Eigen::Vector3d> Triangulator::left_ray(const Eigen::Vector2d& a) const { return ray(used_.left, left_, a); }
+std::optional<Eigen::Vector3d> Triangulator::left_ray(const Eigen::Vector2d& a) const {
+  return ray(used_.left, left_, a);
+}
 std::optional<Eigen::Vector3d> Triangulator::right_ray(const Eigen::Vector2d& b) const {
   return ray(used_.right, right_, b);
 }
 
-std::optional<Eigen::Vector3d> Triangulator::point(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
+std::optional<Eigen::Vector3d> Triangulator::point(const Eigen::Vector2d& a,
+                                                   const Eigen::Vector2d& b) const {
   const auto xl = left_ray(a), xr = right_ray(b);
   if (!xl || !xr) return std::nullopt;
   Projection P1 = Projection::Zero(), P2;

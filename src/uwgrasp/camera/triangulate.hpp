@@ -15,8 +15,8 @@ using Projection = Eigen::Matrix<double, 3, 4>;
 // The point X with x1 ~ P1 X and x2 ~ P2 X, minimising the algebraic error of the four DLT
 // equations (x (P row 3) - (P row 1)) X = 0, ... (eq. 3.27): the right singular vector of the
 // smallest singular value, de-homogenised. Exact for noiseless projections.
-Eigen::Vector3d triangulate_dlt(const Projection& P1, const Projection& P2, const Eigen::Vector2d& x1,
-                                const Eigen::Vector2d& x2);
+Eigen::Vector3d triangulate_dlt(const Projection& P1, const Projection& P2,
+                                const Eigen::Vector2d& x1, const Eigen::Vector2d& x2);
 
 // The rig of two Pinax virtual cameras: each virtual frame is its camera's moved by centre_z
 // along its axis, so x_r' = R x_l' + T' with T' = T + c_l R e_z - c_r e_z.
