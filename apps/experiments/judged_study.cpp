@@ -46,24 +46,26 @@ void score_outcomes(const Setting& st, const eval::Camera& cam, const grasp::Gri
   out.insert(out.end(), scored.begin(), scored.end());
 }
 
-// The stereo sensor's cloud in place of the depth camera's, and its depth against the truth.
+// The stereo sensor's cloud in place of the depth camera's (`f`, rendered ideal: the truth), and
+// its depth against that truth.
 void use_stereo(const Setting& st, const JudgedPlan& plan, std::uint64_t seed, sim::Frame& f, JudgedRun& run) {
   const sim::StereoFrame s = sim::render_stereo(st.world, st.sim.world_from_camera, st.sim.render, seed);
-  sim::RenderConfig ideal = st.sim.render;
-  ideal.noise.enabled = false;
-  const sim::Frame truth = sim::render_rgbd(st.world, st.sim.world_from_camera, ideal, seed);
-  f.cloud = simulated_stereo(s, plan.base.stereo).cloud;
-  const DepthAccuracy a = depth_accuracy(f.cloud, truth, sim::kLabelFirstObject + st.target, 1e9);
+  Cloud cloud = simulated_stereo(s, plan.base.stereo).cloud;
+  const DepthAccuracy a = depth_accuracy(cloud, f, sim::kLabelFirstObject + st.target, 1e9);
   run.depth_error = a.median_error, run.completeness = a.completeness;
+  f.cloud = std::move(cloud);
 }
 
 JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed, JudgedCaseResult& out,
                    bool first) {
   JudgedRun run;
-  sim::Frame f = sim::render_rgbd(st.world, st.sim.world_from_camera, st.sim.render, seed);
+  const bool stereo = out.c.sensor == "stereo";
+  sim::RenderConfig depth_camera = st.sim.render;
+  if (stereo) depth_camera.noise.enabled = false;  // only the truth is needed from it
+  sim::Frame f = sim::render_rgbd(st.world, st.sim.world_from_camera, depth_camera, seed);
   run.visible_points = std::size_t(
       std::count(f.labels.begin(), f.labels.end(), std::uint16_t(sim::kLabelFirstObject + st.target)));
-  if (out.c.sensor == "stereo") use_stereo(st, plan, seed, f, run);
+  if (stereo) use_stereo(st, plan, seed, f, run);
   io::Config cfg = plan.base;
   cfg.seed = seed;
   use_simulation_frames(cfg, st.sim);
