@@ -15,7 +15,11 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # ROS 1 node (optional at build time, UWGRASP_BUILD_ROS)
   catkin libroscpp-dev librosbag-dev libsensor-msgs-dev libgeometry-msgs-dev
-  libvisualization-msgs-dev libpcl-conversions-dev libstd-msgs-dev
+  libvisualization-msgs-dev libpcl-conversions-dev libstd-msgs-dev libstd-srvs-dev
+  libnav-msgs-dev libdiagnostic-msgs-dev ros-message-generation
+  libtf2-dev libtf2-ros-dev libtf2-msgs-dev libtf2-geometry-msgs-dev
+  # ROS 1 integration test: roscore, roslaunch, rostopic, rosbag play
+  ros-core python3-rosbag python3-rostopic
 )
 
 SUDO=""

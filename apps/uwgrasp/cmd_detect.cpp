@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "app/common.hpp"
+#include "app/frame.hpp"
 #include "app/sensor.hpp"
 #include "commands.hpp"
 #include "app/simulation.hpp"
@@ -20,6 +21,7 @@ namespace {
 struct DetectOptions {
   CommonOptions common;
   SensorOptions sensor;
+  FrameOptions frame;
   std::string cloud, object, sampler, json, png;
   std::int64_t samples = -1, top = -1;
 };
@@ -103,7 +105,8 @@ void print_best(const grasp::Grasp& g, const grasp::Frames& f, const grasp::Scor
                 g.force_closure, g.contact_seen[0] ? "seen" : "unseen", g.contact_seen[1] ? "seen" : "unseen");
 }
 
-void print_detection(const std::string& name, const grasp::Detection& d, const io::Config& cfg) {
+void print_detection(const std::string& name, const grasp::Detection& d, const io::Config& cfg,
+                     const io::OutputFrame& frame) {
   const auto& r = d.result;
   const Eigen::Vector3d c = centroid(d.object);
   std::printf("%s: %zu points in, %zu after preprocessing, %zu segments\n", name.c_str(),
@@ -129,6 +132,12 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
     std::printf("no feasible grasp\n");
   } else {
     print_best(r.grasps.front(), r.frames, cfg.grasp.score);
+    if (frame.name != "camera_optical") {
+      const Pose T = frame.from_camera * grasp::camera_from_gripper(r.grasps.front(), r.frames);
+      const Eigen::Quaterniond q(T.linear());
+      print_vec("  cloud's frame  position ", T.translation(), " m");
+      std::printf("  orientation xyzw (%.4f, %.4f, %.4f, %.4f)\n", q.x(), q.y(), q.z(), q.w());
+    }
     std::printf("  rank  score  robust   q_fc  mu_req orient  inliers  width m  vehicle r/p/y deg   hold %%\n");
     for (std::size_t i = 0; i < r.grasps.size(); ++i) {
       const auto& g = r.grasps[i];
@@ -147,8 +156,10 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
 void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>& runners) {
   auto* cmd = app.add_subcommand("detect", "Find ranked grasps on the object of interest in a cloud");
   auto o = std::make_shared<DetectOptions>();
-  cmd->add_option("CLOUD", o->cloud, ".pcd or .ply cloud in the camera optical frame (or --stereo, --rgbd)");
+  cmd->add_option("CLOUD", o->cloud, ".pcd or .ply cloud (or --stereo, --rgbd), in the camera optical frame unless "
+                  "its VIEWPOINT or --camera-pose gives the camera pose");
   add_sensor_options(*cmd, o->sensor);
+  add_frame_options(*cmd, o->frame);
   cmd->add_option("--object", o->object, "Object of interest: color:NAME, label:N, point:X,Y,Z (camera frame), nearest, largest");
   cmd->add_option("--sampler", o->sampler, "Candidate sampler")
       ->check(CLI::IsMember({"antipodal", "uniform", "normal", "surface", "auto"}));
@@ -169,8 +180,14 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
     std::string name = o->cloud;
     const bool images = o->sensor.any();
     progress("uwgrasp detect: loading " + (images ? std::string("images") : o->cloud));
-    const Cloud input = images || o->cloud.empty() ? sensor_input(o->sensor, o->cloud, cfg.stereo, sensor_timer, name)
-                                                   : io::load_cloud(o->cloud);
+    if (images && (!o->frame.camera_pose.empty() || o->frame.frame == "world"))
+      throw Error("--camera-pose and --frame world apply to a CLOUD file: images give a cloud in "
+                  "the camera optical frame");
+    const CameraCloud in = to_camera_frame(
+        images || o->cloud.empty() ? sensor_input(o->sensor, o->cloud, cfg.stereo, sensor_timer, name)
+                                   : io::load_cloud(o->cloud),
+        o->frame, name);
+    const Cloud& input = in.cloud;
     if (images) {
       std::printf("images to cloud (ms):");
       for (const auto& st : sensor_timer.stages()) std::printf(" %s %.1f |", st.name.c_str(), st.ms);
@@ -179,10 +196,11 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
     progress("uwgrasp detect: " + std::to_string(input.size()) + " points, detecting");
     const grasp::Detection d =
         grasp::detect(input, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed);
-    std::printf("path: %s\n", cloud::path_summary(input, cfg.preprocess).c_str());
-    print_detection(name, d, cfg);
+    std::printf("path: %s\nframe: %s\n", cloud::path_summary(input, cfg.preprocess).c_str(),
+                in.summary.c_str());
+    print_detection(name, d, cfg, in.frame);
     if (!o->json.empty()) {
-      io::write_json(o->json, io::grasps_to_json(d, cfg, name, UWGRASP_VERSION));
+      io::write_json(o->json, io::grasps_to_json(d, cfg, name, UWGRASP_VERSION, in.frame));
       std::printf("wrote %s\n", o->json.c_str());
     }
     if (!o->png.empty()) {

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "app/common.hpp"
+#include "app/frame.hpp"
 #include "commands.hpp"
 #include "app/simulation.hpp"
 #include "uwgrasp/core/error.hpp"
@@ -15,6 +16,7 @@ namespace uwgrasp::app {
 namespace {
 struct SegmentOptions {
   CommonOptions common;
+  FrameOptions frame;
   std::string cloud;
   std::string out_dir;
   std::string png;
@@ -61,7 +63,15 @@ Cloud labelled_cloud(const Cloud& input, const segment::Scene& s) {
   return out;
 }
 
-void write_outputs(const SegmentOptions& o, const Cloud& input, const segment::Scene& s) {
+// A cloud of the pipeline (camera frame) back in the input's frame, with the camera pose as its
+// VIEWPOINT, so the written clouds overlay the input.
+Cloud in_input_frame(Cloud c, const io::OutputFrame& f) {
+  c.viewpoint.setZero(), c.orientation.setIdentity();
+  return f.from_camera.isApprox(Pose::Identity()) ? c : transformed(c, f.from_camera);
+}
+
+void write_outputs(const SegmentOptions& o, const Cloud& input, const segment::Scene& s,
+                   const io::OutputFrame& frame) {
   namespace fs = std::filesystem;
   make_output_dir(o.out_dir);
   std::error_code ec;
@@ -71,10 +81,11 @@ void write_outputs(const SegmentOptions& o, const Cloud& input, const segment::S
       char name[48];
       std::snprintf(name, sizeof name, "segment_%03zu.pcd", i);
       written.push_back((fs::path(o.out_dir) / name).string());
-      io::save_cloud(written.back(), select(s.pre.cloud, s.segmentation.segments[i]));
+      io::save_cloud(written.back(),
+                     in_input_frame(select(s.pre.cloud, s.segmentation.segments[i]), frame));
     }
     written.push_back((fs::path(o.out_dir) / "labelled.pcd").string());
-    io::save_cloud(written.back(), labelled_cloud(input, s));
+    io::save_cloud(written.back(), in_input_frame(labelled_cloud(input, s), frame));
   } catch (...) {
     for (const auto& w : written) fs::remove(w, ec);  // no partial output
     throw;
@@ -88,7 +99,9 @@ void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>
   auto* cmd = app.add_subcommand(
       "segment", "Preprocess and segment a cloud; print the segments, optionally write them");
   auto o = std::make_shared<SegmentOptions>();
-  cmd->add_option("CLOUD", o->cloud, ".pcd or .ply cloud in the camera optical frame")->required();
+  cmd->add_option("CLOUD", o->cloud, ".pcd or .ply cloud, in the camera optical frame unless its "
+                  "VIEWPOINT or --camera-pose gives the camera pose")->required();
+  add_frame_options(*cmd, o->frame);
   cmd->add_option("--out-dir", o->out_dir,
                   "Write segment_NNN.pcd per segment and labelled.pcd (label 0: none, k+1: "
                   "segment k) here");
@@ -98,7 +111,8 @@ void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>
     const Session session = open_session(o->common);
     const io::Config& cfg = session.config;
     progress("uwgrasp segment: loading " + o->cloud);
-    const Cloud input = io::load_cloud(o->cloud);
+    const CameraCloud in = to_camera_frame(io::load_cloud(o->cloud), o->frame, o->cloud);
+    const Cloud& input = in.cloud;
     progress("uwgrasp segment: " + std::to_string(input.size()) + " points, segmenting");
     const segment::Scene scene =
         segment::segment_scene(input, cfg.preprocess, cfg.segment, cfg.seed);
@@ -110,9 +124,10 @@ void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>
         selected = -1;  // the table still lists every segment
       }
     }
-    std::printf("path: %s\n", cloud::path_summary(input, cfg.preprocess).c_str());
+    std::printf("path: %s\nframe: %s\n", cloud::path_summary(input, cfg.preprocess).c_str(),
+                in.summary.c_str());
     print_table(o->cloud, scene, selected, cfg.segment.object.color);
-    if (!o->out_dir.empty()) write_outputs(*o, input, scene);
+    if (!o->out_dir.empty()) write_outputs(*o, input, scene, in.frame);
     if (!o->png.empty()) {
       viz::Picture pic;
       pic.title = std::filesystem::path(o->cloud).filename().string() + ": " +

@@ -17,7 +17,8 @@ namespace uwgrasp::app {
 namespace {
 struct SimulateOptions {
   CommonOptions common;
-  std::string scene, water, sensor = "rgbd", out, port;
+  std::string scene, water, sensor = "rgbd", out, port, frame = "camera";
+  bool object_only = false;
 };
 
 std::string port_yaml(const FlatPort& p) {
@@ -27,6 +28,20 @@ std::string port_yaml(const FlatPort& p) {
                 "distance: %.9g\nthickness: %.9g\nn_air: %.9g\nn_glass: %.9g\nn_water: %.9g\n",
                 p.distance, p.thickness, p.n_air, p.n_glass, p.n_water);
   return text;
+}
+
+// The points that show the object of interest (truth labels), unorganised: an object-only cloud
+// as segmented-out clouds and fused scans come.
+Cloud object_points(const sim::Frame& f, const sim::Scene& scene) {
+  std::vector<std::uint32_t> keep;
+  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+    if (!scene.objects[k].interest) continue;
+    for (std::size_t i = 0; i < f.labels.size(); ++i)
+      if (f.labels[i] == sim::kLabelFirstObject + k && is_finite(f.cloud.points[i]))
+        keep.push_back(static_cast<std::uint32_t>(i));
+  }
+  if (keep.empty()) throw Error("--object-only: the camera sees no point of the scene's object of interest");
+  return select(f.cloud, keep);
 }
 
 int run_simulate(const SimulateOptions& o) {
@@ -50,7 +65,9 @@ int run_simulate(const SimulateOptions& o) {
   make_output_dir(o.out);
   const auto path = [&](const char* name) { return (std::filesystem::path(o.out) / name).string(); };
   const int w = f.intrinsics.width, h = f.intrinsics.height;
-  io::save_cloud(path("cloud.pcd"), f.cloud);
+  // In the world frame the camera pose goes into the PCD VIEWPOINT (how many tools write clouds).
+  const Cloud cloud = o.object_only ? object_points(f, s.scene) : f.cloud;
+  io::save_cloud(path("cloud.pcd"), o.frame == "world" ? transformed(cloud, s.world_from_camera) : cloud);
   write_png(path("rgb.png"), viz::rgb_image(f.rgb, w, h));
   write_png(path("depth.png"), viz::depth_image(f.depth, w, h));
   write_png(path("labels.png"), viz::depth_image(f.labels, w, h));
@@ -93,6 +110,11 @@ void add_simulate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner
   cmd->add_option("--out", o->out, "Output directory")->required();
   cmd->add_option("--port", o->port, "The cameras behind this flat port (a port .yaml: distance, thickness, "
                                      "n_air, n_glass, n_water)");
+  cmd->add_option("--frame", o->frame, "cloud.pcd in the camera optical frame (default) or in the "
+                                       "scene's world frame with the camera pose as its VIEWPOINT")
+      ->check(CLI::IsMember({"camera", "world"}));
+  cmd->add_flag("--object-only", o->object_only, "cloud.pcd holds only the object of interest's points "
+                                                 "(unorganised), as segmented-out clouds do");
   add_common(*cmd, o->common);
   runners.emplace_back(cmd, [o] { return run_simulate(*o); });
 }

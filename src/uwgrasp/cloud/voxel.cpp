@@ -200,6 +200,7 @@ VoxelResult voxel_grid(const Cloud& in, const VoxelConfig& cfg) {
   VoxelResult res;
   res.voxel_of.assign(in.size(), VoxelResult::kDropped);
   res.cloud.viewpoint = in.viewpoint;
+  res.cloud.orientation = in.orientation;
   const std::vector<Span> spans = chunk_spans(in);
   Span all;
   for (const Span& s : spans) all.lo = all.lo.cwiseMin(s.lo), all.hi = all.hi.cwiseMax(s.hi), all.finite += s.finite;

@@ -45,8 +45,26 @@ Cloud select(const Cloud& cloud, std::span<const std::uint32_t> indices) {
   gather(cloud.colors, indices, out.colors);
   gather(cloud.labels, indices, out.labels);
   out.viewpoint = cloud.viewpoint;
+  out.orientation = cloud.orientation;
   make_unorganised(out);
   return out;
+}
+
+Cloud transformed(const Cloud& cloud, const Eigen::Isometry3d& T) {
+  Cloud out = cloud;
+  const Eigen::Isometry3f Tf = T.cast<float>();
+  for (auto& p : out.points) p = Tf * p;
+  for (auto& n : out.normals) n = Tf.linear() * n;
+  out.viewpoint = Tf * cloud.viewpoint;
+  out.orientation = (Eigen::Quaterniond(T.linear()) * cloud.orientation.cast<double>()).normalized().cast<float>();
+  return out;
+}
+
+Eigen::Isometry3d sensor_pose(const Cloud& cloud) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = cloud.orientation.cast<double>().normalized().toRotationMatrix();
+  T.translation() = cloud.viewpoint.cast<double>();
+  return T;
 }
 
 void make_unorganised(Cloud& cloud) {

@@ -1,6 +1,7 @@
 #pragma once
 // Cloud: one vector per attribute; an empty vector means the attribute is absent.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -25,6 +26,9 @@ struct Cloud {
   std::uint32_t height = 1;
   // Sensor origin in the cloud's frame (the camera optical frame for sensor clouds).
   Eigen::Vector3f viewpoint = Eigen::Vector3f::Zero();
+  // Sensor orientation in the cloud's frame: with `viewpoint`, the camera pose T_FC (a PCD's
+  // VIEWPOINT). Identity for a cloud in the camera optical frame.
+  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
 
   std::size_t size() const { return points.size(); }
   bool empty() const { return points.empty(); }
@@ -41,6 +45,13 @@ void check_consistent(const Cloud& cloud, const char* what);
 
 // Subset in the order of `indices`; the result is unorganised and keeps the viewpoint.
 Cloud select(const Cloud& cloud, std::span<const std::uint32_t> indices);
+
+// The cloud in another frame: T maps this cloud's frame F to the new one (points, normals,
+// viewpoint and orientation move; NaN points stay NaN, so an organised cloud stays organised).
+Cloud transformed(const Cloud& cloud, const Eigen::Isometry3d& T);
+
+// The sensor pose in the cloud's frame, T_FC, from viewpoint and orientation.
+Eigen::Isometry3d sensor_pose(const Cloud& cloud);
 
 // Marks the cloud unorganised (width = size, height = 1).
 void make_unorganised(Cloud& cloud);

@@ -23,9 +23,9 @@ json pose_json(const Pose& T) {
           {"rpy", vec(rpy_from_matrix(T.linear()))}};
 }
 
-json grasp_json(const grasp::Grasp& g, const grasp::Frames& f, std::size_t rank) {
-  const Pose T_CG = grasp::camera_from_gripper(g, f);
-  const Pose T_CL = f.level_from_camera.inverse();
+json grasp_json(const grasp::Grasp& g, const grasp::Frames& f, const Pose& T_FC, std::size_t rank) {
+  const Pose T_CG = T_FC * grasp::camera_from_gripper(g, f);
+  const Pose T_CL = T_FC * f.level_from_camera.inverse();
   json j;
   j["rank"] = rank;
   j["position"] = vec(T_CG.translation());
@@ -68,12 +68,16 @@ json timing_json(const StageTimer& t) {
 }  // namespace
 
 json grasps_to_json(const grasp::Detection& d, const Config& cfg, const std::string& input,
-                    const std::string& version) {
+                    const std::string& version, const OutputFrame& frame) {
   const auto& r = d.result;
   json j;
   j["uwgrasp_version"] = version;
   j["input"] = std::filesystem::path(input).filename().string();
-  j["frame"] = "camera_optical";
+  j["frame"] = frame.name;
+  if (!frame.from_camera.isApprox(Pose::Identity())) {
+    j["camera_pose"] = pose_json(frame.from_camera);
+    j["camera_pose"].erase("rpy");
+  }
   j["seed"] = cfg.seed;
   j["config"] = to_json(cfg);
   json rejected = json::object();
@@ -86,14 +90,14 @@ json grasps_to_json(const grasp::Detection& d, const Config& cfg, const std::str
                  {"feasible", r.feasible()},
                  {"rejected", rejected}};
   j["timing_ms"] = timing_json(d.timer);
-  j["object"] = {{"centroid", vec(centroid(d.object))},
+  j["object"] = {{"centroid", vec(frame.from_camera * centroid(d.object))},
                  {"points", d.object.size()},
                  {"segment", d.segment}};
   j["sampler"] = grasp::sampler_name(r.sampler);
   j["max_inliers"] = r.max_inliers;
   j["grasps"] = json::array();
   for (std::size_t i = 0; i < r.grasps.size(); ++i)
-    j["grasps"].push_back(grasp_json(r.grasps[i], r.frames, i + 1));
+    j["grasps"].push_back(grasp_json(r.grasps[i], r.frames, frame.from_camera, i + 1));
   return j;
 }
 

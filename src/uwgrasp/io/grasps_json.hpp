@@ -12,8 +12,16 @@ namespace uwgrasp::io {
 // ("level") and the vehicle pose T_LB in the level frame. The vehicle score q_v and hold_cost
 // (thruster utilisation of holding that pose's attitude) are null when no vehicle model priced
 // the grasp (grasp.score.hold_cost empty).
+// `frame` is the cloud's own frame when it came in another frame than the camera's (a world
+// frame with the camera pose from the PCD VIEWPOINT, --camera-pose, or tf): poses, directions,
+// contacts and the object's centroid are written in it, with the camera pose as "camera_pose".
+struct OutputFrame {
+  std::string name = "camera_optical";
+  Pose from_camera = Pose::Identity();  // T_FC
+};
 nlohmann::json grasps_to_json(const grasp::Detection& d, const Config& cfg,
-                              const std::string& input, const std::string& version);
+                              const std::string& input, const std::string& version,
+                              const OutputFrame& frame = {});
 
 // Writes the JSON atomically (no partial file), two-space indented, newline-terminated.
 void write_json(const std::string& path, const nlohmann::json& j);

@@ -66,6 +66,10 @@ Cloud load_cloud(const std::string& path) {
   if (rc < 0) throw Error(path + ": malformed or truncated " + ext.substr(1) + " file");
   Cloud c = from_blob(blob, path);
   c.viewpoint = origin.head<3>();
+  if (!origin.head<3>().allFinite() || !orientation.coeffs().allFinite() ||
+      std::abs(orientation.norm() - 1.0f) > 1e-3f)
+    throw Error(path + ": VIEWPOINT is not a finite position and unit quaternion");
+  c.orientation = orientation.normalized();
   return c;
 }
 
@@ -77,7 +81,7 @@ void save_cloud(const std::string& path, const Cloud& cloud, PcdFormat format) {
     throw Error(path + ": unsupported extension '" + ext + "' (use .pcd or .ply)");
   const pcl::PCLPointCloud2 blob = to_blob(cloud);
   Eigen::Vector4f origin(cloud.viewpoint.x(), cloud.viewpoint.y(), cloud.viewpoint.z(), 0.0f);
-  const Eigen::Quaternionf orient = Eigen::Quaternionf::Identity();
+  const Eigen::Quaternionf orient = cloud.orientation;
   write_atomically(path, [&](const std::string& tmp) {
     int rc = 0;
     if (ext == ".ply") {

@@ -1,0 +1,91 @@
+#include "app/frame.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::app {
+
+void add_frame_options(CLI::App& cmd, FrameOptions& o) {
+  cmd.add_option("--camera-pose", o.camera_pose,
+                 "The camera's pose in the cloud's frame, X,Y,Z,QX,QY,QZ,QW (optical axes: z "
+                 "forward, x right, y down); overrides the PCD VIEWPOINT. Results are written in "
+                 "the cloud's frame");
+  cmd.add_option("--frame", o.frame,
+                 "The cloud's frame: auto (the PCD VIEWPOINT when it is not the identity, else "
+                 "the camera optical frame), camera (ignore VIEWPOINT), world (needs VIEWPOINT or "
+                 "--camera-pose)")
+      ->check(CLI::IsMember({"auto", "camera", "world"}));
+}
+
+Pose parse_camera_pose(const std::string& text, const std::string& what) {
+  std::stringstream in(text);
+  double v[7];
+  bool ok = true;
+  for (int i = 0; i < 7 && ok; ++i) {
+    char comma = ',';
+    ok = static_cast<bool>(in >> v[i]) && (i == 6 || (in >> comma && comma == ','));
+  }
+  ok = ok && (in >> std::ws).eof();
+  const Eigen::Vector3d t(v[0], v[1], v[2]);
+  const Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);
+  if (!ok || !t.allFinite() || !q.coeffs().allFinite() || std::abs(q.norm() - 1.0) > 1e-3)
+    throw Error(what + " '" + text + "': expected X,Y,Z,QX,QY,QZ,QW with a unit quaternion");
+  return make_pose(t, q.normalized());
+}
+
+namespace {
+// Share of finite points at z <= 0, and the count of finite points.
+std::pair<double, std::size_t> behind_share(const Cloud& c) {
+  std::size_t finite = 0, behind = 0;
+  for (const auto& p : c.points) {
+    if (!is_finite(p)) continue;
+    ++finite;
+    behind += p.z() <= 0.0f;
+  }
+  return {finite ? double(behind) / double(finite) : 0.0, finite};
+}
+}  // namespace
+
+CameraCloud to_camera_frame(const Cloud& input, const FrameOptions& o, const std::string& name) {
+  const bool has_viewpoint = !sensor_pose(input).isApprox(Pose::Identity());
+  if (!o.camera_pose.empty() && o.frame == "camera")
+    throw Error("--camera-pose and --frame camera contradict each other: the camera frame has the "
+                "camera at its origin");
+  CameraCloud out;
+  Pose T_FC = Pose::Identity();
+  if (!o.camera_pose.empty()) {
+    T_FC = parse_camera_pose(o.camera_pose, "--camera-pose");
+    out.summary = "camera pose from --camera-pose; results in the cloud's frame";
+  } else if (has_viewpoint && o.frame != "camera") {
+    T_FC = sensor_pose(input);
+    out.summary = "camera pose from the cloud's VIEWPOINT; results in the cloud's frame";
+  } else if (o.frame == "world") {
+    throw Error(name + ": --frame world needs the camera's pose: the cloud has no VIEWPOINT; give "
+                "--camera-pose X,Y,Z,QX,QY,QZ,QW");
+  } else {
+    out.summary = "cloud in the camera optical frame";
+  }
+  const bool moved = !T_FC.isApprox(Pose::Identity());
+  if (moved) out.frame = {"world", T_FC};
+  Cloud c = input;
+  c.viewpoint.setZero();
+  c.orientation.setIdentity();
+  out.cloud = moved ? transformed(c, T_FC.inverse()) : c;
+  if (moved) out.cloud.viewpoint.setZero(), out.cloud.orientation.setIdentity();
+  const auto [share, finite] = behind_share(out.cloud);
+  if (finite > 0 && share >= 0.01) {
+    char pct[32];
+    std::snprintf(pct, sizeof pct, "%.0f %%", 100.0 * share);
+    throw Error(name + ": " + pct + " of the points lie behind the camera (z <= 0 in its optical "
+                "frame), so the cloud is not in the camera's frame" +
+                (moved ? " for this camera pose; check --camera-pose or the VIEWPOINT"
+                       : "; give the camera's pose in the cloud's frame with --camera-pose "
+                         "X,Y,Z,QX,QY,QZ,QW or a PCD VIEWPOINT (--frame world)"));
+  }
+  return out;
+}
+
+}  // namespace uwgrasp::app
