@@ -16,7 +16,7 @@ PACKAGES=(
   # ROS 1 node (optional at build time, UWGRASP_BUILD_ROS)
   catkin libroscpp-dev librosbag-dev libsensor-msgs-dev libgeometry-msgs-dev
   libvisualization-msgs-dev libpcl-conversions-dev libstd-msgs-dev libstd-srvs-dev
-  libnav-msgs-dev libdiagnostic-msgs-dev ros-message-generation
+  libnav-msgs-dev libdiagnostic-msgs-dev ros-message-generation ros-std-msgs ros-geometry-msgs
   libtf2-dev libtf2-ros-dev libtf2-msgs-dev libtf2-geometry-msgs-dev
   # ROS 1 integration test: roscore, roslaunch, rostopic, rosbag play
   ros-core python3-rosbag python3-rostopic

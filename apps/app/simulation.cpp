@@ -83,18 +83,8 @@ io::Config pointed_at(io::Config cfg, const Simulation& s, const sim::Frame& f, 
 }
 
 viz::Wire gripper_wire(const Pose& T, const grasp::Gripper& g, bool body) {
-  const Eigen::Isometry3f Tf = T.cast<float>();
   viz::Wire w;
-  for (int part = 0; part < (body ? grasp::kParts : grasp::kParts - 1); ++part) {
-    const auto& box = g.solids[static_cast<std::size_t>(part)];
-    const auto corner = [&](int k) {
-      return Eigen::Vector3f((k & 1) ? box.hi.x() : box.lo.x(), (k & 2) ? box.hi.y() : box.lo.y(),
-                             (k & 4) ? box.hi.z() : box.lo.z());
-    };
-    for (int a = 0; a < 8; ++a)
-      for (int bit = 0; bit < 3; ++bit)
-        if (const int b = a | (1 << bit); b != a) w.segments.push_back({Tf * corner(a), Tf * corner(b)});
-  }
+  w.segments = grasp::gripper_edges(T, g, body);
   return w;
 }
 

@@ -9,6 +9,7 @@
 #include "app/common.hpp"
 #include "app/frame.hpp"
 #include "app/sensor.hpp"
+#include "bag_commands.hpp"
 #include "commands.hpp"
 #include "app/simulation.hpp"
 #include "uwgrasp/core/error.hpp"
@@ -22,6 +23,7 @@ struct DetectOptions {
   CommonOptions common;
   SensorOptions sensor;
   FrameOptions frame;
+  BagOptions bag;
   std::string cloud, object, sampler, json, png;
   std::int64_t samples = -1, top = -1;
 };
@@ -160,6 +162,13 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
                   "its VIEWPOINT or --camera-pose gives the camera pose");
   add_sensor_options(*cmd, o->sensor);
   add_frame_options(*cmd, o->frame);
+  cmd->add_option("--bag", o->bag.bag, "Every PointCloud2 of --topic in this rosbag (ROS builds); --json "
+                                       "then writes one grasps.json per line (JSON Lines)");
+  cmd->add_option("--topic", o->bag.topic, "The bag's cloud topic (camera optical frame)")->capture_default_str();
+  cmd->add_option("--imu-topic", o->bag.imu_topic, "The bag's IMU topic for the capture roll/pitch (\"\" = none)")
+      ->capture_default_str();
+  cmd->add_option("--base-frame", o->bag.base_frame, "The vehicle's tf frame: the camera mount comes from tf "
+                                                     "(\"\" = from the config)")->capture_default_str();
   cmd->add_option("--object", o->object, "Object of interest: color:NAME, label:N, point:X,Y,Z (camera frame), nearest, largest");
   cmd->add_option("--sampler", o->sampler, "Candidate sampler")
       ->check(CLI::IsMember({"antipodal", "uniform", "normal", "surface", "auto"}));
@@ -176,6 +185,11 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
     if (o->top > 0) common.sets.push_back("grasp.score.top=" + std::to_string(o->top));
     const Session session = open_session(common);
     const io::Config& cfg = session.config;
+    if (!o->bag.bag.empty()) {
+      if (o->sensor.any() || !o->cloud.empty() || !o->png.empty())
+        throw Error("--bag takes the clouds from the bag: without CLOUD, --stereo, --rgbd or --png");
+      return detect_bag(o->bag, cfg, o->json);
+    }
     StageTimer sensor_timer;
     std::string name = o->cloud;
     const bool images = o->sensor.any();

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "app/common.hpp"
+#include "bag_commands.hpp"
 #include "commands.hpp"
 #include "app/simulation.hpp"
 #include "uwgrasp/core/error.hpp"
@@ -19,6 +20,7 @@ struct SimulateOptions {
   CommonOptions common;
   std::string scene, water, sensor = "rgbd", out, port, frame = "camera";
   bool object_only = false;
+  BagOptions bag;
 };
 
 std::string port_yaml(const FlatPort& p) {
@@ -52,6 +54,14 @@ int run_simulate(const SimulateOptions& o) {
     check_port(*s.scene.port);
     s.render.port = s.scene.port;
   }
+  if (!o.bag.bag.empty()) {
+    if (o.sensor != "rgbd" || o.object_only || o.frame != "camera" || !o.out.empty())
+      throw Error("--bag writes the RGB-D frames of the scene as a driver records them: without --out, "
+                  "--sensor stereo, --frame or --object-only");
+    simulate_bag(s, session.config, o.bag);
+    return 0;
+  }
+  if (o.out.empty()) throw Error("simulate: give --out DIR (or --bag FILE)");
   progress("uwgrasp simulate: building scene " + s.scene.name);
   const sim::World world(s.scene);
   const auto t0 = std::chrono::steady_clock::now();
@@ -107,7 +117,12 @@ void add_simulate_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner
       ->check(CLI::IsMember({"clear", "coastal", "turbid"}));
   cmd->add_option("--sensor", o->sensor, "rgbd, or stereo (also writes left/right images)")
       ->check(CLI::IsMember({"rgbd", "stereo"}));
-  cmd->add_option("--out", o->out, "Output directory")->required();
+  cmd->add_option("--out", o->out, "Output directory");
+  cmd->add_option("--bag", o->bag.bag, "Write the frames as a rosbag instead (cloud, images, camera_info, "
+                                       "tf, imu; ROS builds only)");
+  cmd->add_option("--frames", o->bag.frames, "Frames in the bag (noise seeds seed, seed+1, ...)")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--rate", o->bag.rate, "Frame rate of the bag, Hz")->check(CLI::PositiveNumber);
   cmd->add_option("--port", o->port, "The cameras behind this flat port (a port .yaml: distance, thickness, "
                                      "n_air, n_glass, n_water)");
   cmd->add_option("--frame", o->frame, "cloud.pcd in the camera optical frame (default) or in the "

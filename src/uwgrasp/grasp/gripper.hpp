@@ -8,7 +8,9 @@
 // The closing region is the volume the fingers sweep from open to closed: x in [-L/2, L/2],
 // |y| <= A/2, |z| <= H/2 (H = finger height, 1.5 cm as in 8.4).
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
+#include <vector>
 
 namespace uwgrasp::grasp {
 
@@ -58,6 +60,12 @@ Gripper make_gripper(const GripperConfig& cfg);
 // The gripper with every solid part grown by `margin` on each side (the closing region kept):
 // what the collision check uses when the surface it checks against is uncertain by that much.
 Gripper grow_solids(const Gripper& g, float margin);
+
+// The edges of the solid parts (fingers, palm and, with `body`, the body behind the palm) at
+// pose T (gripper frame in the output frame): 12 segments per box, for wireframe pictures and
+// RViz markers.
+std::vector<std::array<Eigen::Vector3f, 2>> gripper_edges(const Eigen::Isometry3d& T, const Gripper& g,
+                                                          bool body = true);
 
 // Largest width the gripper accepts at closure: max_aperture - 2 * clearance.
 float max_grasp_width(const Gripper& g);
