@@ -49,6 +49,24 @@ std::pair<double, std::size_t> behind_share(const Cloud& c) {
 }
 }  // namespace
 
+namespace {
+// The cloud moved into the optical frame of a camera at T_FC.
+Cloud in_camera(const Cloud& input, const Pose& T_FC) {
+  Cloud c = input;
+  c.viewpoint.setZero();
+  c.orientation.setIdentity();
+  if (!T_FC.isApprox(Pose::Identity())) c = transformed(c, T_FC.inverse());
+  c.viewpoint.setZero(), c.orientation.setIdentity();
+  return c;
+}
+
+std::string percent(double share) {
+  char pct[32];
+  std::snprintf(pct, sizeof pct, "%.0f %%", 100.0 * share);
+  return pct;
+}
+}  // namespace
+
 CameraCloud to_camera_frame(const Cloud& input, const FrameOptions& o, const std::string& name) {
   const bool has_viewpoint = !sensor_pose(input).isApprox(Pose::Identity());
   if (!o.camera_pose.empty() && o.frame == "camera")
@@ -62,6 +80,15 @@ CameraCloud to_camera_frame(const Cloud& input, const FrameOptions& o, const std
   } else if (has_viewpoint && o.frame != "camera") {
     T_FC = sensor_pose(input);
     out.summary = "camera pose from the cloud's VIEWPOINT; results in the cloud's frame";
+    // Many published PCDs (PCL's own samples among them) carry a VIEWPOINT orientation that their
+    // points do not follow. When the VIEWPOINT would put the points behind the camera and the
+    // cloud as given has them in front, the cloud is in the camera frame (--frame world forces it).
+    if (o.frame == "auto" && behind_share(in_camera(input, T_FC)).first >= 0.01 &&
+        behind_share(in_camera(input, Pose::Identity())).first < 0.01) {
+      T_FC = Pose::Identity();
+      out.summary = "cloud in the camera optical frame (its VIEWPOINT would put the points behind the "
+                    "camera, so it is ignored; --frame world uses it)";
+    }
   } else if (o.frame == "world") {
     throw Error(name + ": --frame world needs the camera's pose: the cloud has no VIEWPOINT; give "
                 "--camera-pose X,Y,Z,QX,QY,QZ,QW");
@@ -70,21 +97,14 @@ CameraCloud to_camera_frame(const Cloud& input, const FrameOptions& o, const std
   }
   const bool moved = !T_FC.isApprox(Pose::Identity());
   if (moved) out.frame = {"world", T_FC};
-  Cloud c = input;
-  c.viewpoint.setZero();
-  c.orientation.setIdentity();
-  out.cloud = moved ? transformed(c, T_FC.inverse()) : c;
-  if (moved) out.cloud.viewpoint.setZero(), out.cloud.orientation.setIdentity();
+  out.cloud = in_camera(input, T_FC);
   const auto [share, finite] = behind_share(out.cloud);
-  if (finite > 0 && share >= 0.01) {
-    char pct[32];
-    std::snprintf(pct, sizeof pct, "%.0f %%", 100.0 * share);
-    throw Error(name + ": " + pct + " of the points lie behind the camera (z <= 0 in its optical "
+  if (finite > 0 && share >= 0.01)
+    throw Error(name + ": " + percent(share) + " of the points lie behind the camera (z <= 0 in its optical "
                 "frame), so the cloud is not in the camera's frame" +
                 (moved ? " for this camera pose; check --camera-pose or the VIEWPOINT"
                        : "; give the camera's pose in the cloud's frame with --camera-pose "
                          "X,Y,Z,QX,QY,QZ,QW or a PCD VIEWPOINT (--frame world)"));
-  }
   return out;
 }
 

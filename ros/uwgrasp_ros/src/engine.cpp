@@ -89,6 +89,11 @@ std::array<double, 2> roll_pitch_from(const std::array<double, 4>& qa) {
   return {rpy.x(), rpy.y()};
 }
 
+MountRpy mount_from(const Pose7& ros_body_from_optical) {
+  const Pose T_BC = to_pose(fossen_from_ros_body()) * to_pose(ros_body_from_optical);
+  return {arr(T_BC.translation()), arr(uwgrasp::rpy_from_matrix(T_BC.linear() * uwgrasp::body_from_optical().transpose()))};
+}
+
 struct Engine::Impl {
   uwgrasp::io::Config config;
 };
@@ -122,10 +127,10 @@ PlainDetection Engine::detect(const PlainCloud& in, const Capture& capture, cons
                               const std::string& version) const {
   const uwgrasp::Cloud cloud = to_cloud(in);
   uwgrasp::io::Config cfg = impl_->config;
-  if (capture.ros_body_from_camera) {  // T_BC in uwgrasp's body frame -> the mount (pose.hpp)
-    const Pose T_BC = to_pose(fossen_from_ros_body()) * to_pose(*capture.ros_body_from_camera);
-    cfg.grasp.frames.camera.position = T_BC.translation();
-    cfg.grasp.frames.camera.rpy = uwgrasp::rpy_from_matrix(T_BC.linear() * uwgrasp::body_from_optical().transpose());
+  if (capture.ros_body_from_camera) {
+    const MountRpy m = mount_from(*capture.ros_body_from_camera);
+    cfg.grasp.frames.camera.position = {m.position[0], m.position[1], m.position[2]};
+    cfg.grasp.frames.camera.rpy = {m.rpy[0], m.rpy[1], m.rpy[2]};
   }
   if (capture.roll_pitch)
     cfg.grasp.frames.capture_roll = (*capture.roll_pitch)[0], cfg.grasp.frames.capture_pitch = (*capture.roll_pitch)[1];

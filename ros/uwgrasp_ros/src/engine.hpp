@@ -49,6 +49,13 @@ std::array<double, 2> roll_pitch_from(const std::array<double, 4>& q);
 // differ by a half turn about x.
 Pose7 fossen_from_ros_body();
 
+// The camera mount of uwgrasp's config (grasp.frames.camera: position and roll/pitch/yaw of the
+// camera's forward frame in the Fossen body) from the optical frame's pose in a ROS body frame.
+struct MountRpy {
+  std::array<double, 3> position{}, rpy{};
+};
+MountRpy mount_from(const Pose7& ros_body_from_optical);
+
 struct PlainGrasp {
   Pose7 pose;                            // gripper frame G in the cloud's frame
   std::array<double, 3> approach{}, closing{};
