@@ -169,7 +169,7 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
       ->capture_default_str();
   cmd->add_option("--base-frame", o->bag.base_frame, "The vehicle's tf frame: the camera mount comes from tf "
                                                      "(\"\" = from the config)")->capture_default_str();
-  cmd->add_option("--object", o->object, "Object of interest: color:NAME, label:N, point:X,Y,Z (camera frame), nearest, largest");
+  cmd->add_option("--object", o->object, "Object of interest: color:NAME, label:N, point:X,Y,Z (the cloud's frame), nearest, largest");
   cmd->add_option("--sampler", o->sampler, "Candidate sampler")
       ->check(CLI::IsMember({"antipodal", "uniform", "normal", "surface", "auto"}));
   cmd->add_option("--samples", o->samples, "Number of candidates")->check(CLI::Range(1, 100000000));
@@ -183,8 +183,8 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
     if (!o->sampler.empty()) common.sets.push_back("grasp.sampler.kind=" + o->sampler);
     if (o->samples > 0) common.sets.push_back("grasp.sampler.samples=" + std::to_string(o->samples));
     if (o->top > 0) common.sets.push_back("grasp.score.top=" + std::to_string(o->top));
-    const Session session = open_session(common);
-    const io::Config& cfg = session.config;
+    Session session = open_session(common);
+    io::Config& cfg = session.config;
     if (!o->bag.bag.empty()) {
       if (o->sensor.any() || !o->cloud.empty() || !o->png.empty())
         throw Error("--bag takes the clouds from the bag: without CLOUD, --stereo, --rgbd or --png");
@@ -202,6 +202,9 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
                                    : io::load_cloud(o->cloud),
         o->frame, name);
     const Cloud& input = in.cloud;
+    // --object point:X,Y,Z is in the cloud's frame, like every other coordinate the user sees.
+    if (o->object.rfind("point:", 0) == 0)
+      cfg.segment.object.point = in.frame.from_camera.inverse() * cfg.segment.object.point;
     if (images) {
       std::printf("images to cloud (ms):");
       for (const auto& st : sensor_timer.stages()) std::printf(" %s %.1f |", st.name.c_str(), st.ms);
