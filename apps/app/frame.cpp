@@ -36,18 +36,6 @@ Pose parse_camera_pose(const std::string& text, const std::string& what) {
   return make_pose(t, q.normalized());
 }
 
-namespace {
-// Share of finite points at z <= 0, and the count of finite points.
-std::pair<double, std::size_t> behind_share(const Cloud& c) {
-  std::size_t finite = 0, behind = 0;
-  for (const auto& p : c.points) {
-    if (!is_finite(p)) continue;
-    ++finite;
-    behind += p.z() <= 0.0f;
-  }
-  return {finite ? double(behind) / double(finite) : 0.0, finite};
-}
-}  // namespace
 
 namespace {
 // The cloud moved into the optical frame of a camera at T_FC.
@@ -83,8 +71,8 @@ CameraCloud to_camera_frame(const Cloud& input, const FrameOptions& o, const std
     // Many published PCDs (PCL's own samples among them) carry a VIEWPOINT orientation that their
     // points do not follow. When the VIEWPOINT would put the points behind the camera and the
     // cloud as given has them in front, the cloud is in the camera frame (--frame world forces it).
-    if (o.frame == "auto" && behind_share(in_camera(input, T_FC)).first >= 0.01 &&
-        behind_share(in_camera(input, Pose::Identity())).first < 0.01) {
+    if (o.frame == "auto" && behind_camera(in_camera(input, T_FC)).share() >= 0.01 &&
+        behind_camera(in_camera(input, Pose::Identity())).share() < 0.01) {
       T_FC = Pose::Identity();
       out.summary = "cloud in the camera optical frame (its VIEWPOINT would put the points behind the "
                     "camera, so it is ignored; --frame world uses it)";
@@ -98,9 +86,9 @@ CameraCloud to_camera_frame(const Cloud& input, const FrameOptions& o, const std
   const bool moved = !T_FC.isApprox(Pose::Identity());
   if (moved) out.frame = {"world", T_FC};
   out.cloud = in_camera(input, T_FC);
-  const auto [share, finite] = behind_share(out.cloud);
-  if (finite > 0 && share >= 0.01)
-    throw Error(name + ": " + percent(share) + " of the points lie behind the camera (z <= 0 in its optical "
+  const BehindCount behind = behind_camera(out.cloud);
+  if (behind.share() >= 0.01)
+    throw Error(name + ": " + percent(behind.share()) + " of the points lie behind the camera (z <= 0 in its optical "
                 "frame), so the cloud is not in the camera's frame" +
                 (moved ? " for this camera pose; check --camera-pose or the VIEWPOINT"
                        : "; give the camera's pose in the cloud's frame with --camera-pose "

@@ -24,19 +24,6 @@ int detect_bag(const BagOptions& o, const io::Config&, const std::string&) {
 }
 #else
 namespace {
-uwgrasp_ros::Pose7 pose7(const Pose& T) {
-  const Eigen::Quaterniond q(T.linear());
-  return {{T.translation().x(), T.translation().y(), T.translation().z()}, {q.x(), q.y(), q.z(), q.w()}};
-}
-
-uwgrasp_ros::PlainCloud plain(const Cloud& c) {
-  uwgrasp_ros::PlainCloud p;
-  p.width = c.width, p.height = c.height;
-  for (const auto& x : c.points) p.xyz.insert(p.xyz.end(), {x.x(), x.y(), x.z()});
-  for (const auto& k : c.colors) p.rgb.insert(p.rgb.end(), {k.r, k.g, k.b});
-  return p;
-}
-
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
@@ -56,14 +43,14 @@ void simulate_bag(const Simulation& s, const io::Config& cfg, const BagOptions& 
     const sim::Frame f = sim::render_rgbd(world, s.world_from_camera, s.render, cfg.seed + std::uint64_t(i));
     uwgrasp_ros::BagFrame b;
     b.time = 1.7e9 + double(i) / o.rate;  // fixed: same seed, same bag
-    b.cloud = plain(f.cloud);
+    b.cloud = uwgrasp_ros::plain_cloud(f.cloud);
     b.fx = f.intrinsics.fx, b.fy = f.intrinsics.fy, b.cx = f.intrinsics.cx, b.cy = f.intrinsics.cy;
     for (const auto& k : f.rgb) b.rgb.insert(b.rgb.end(), {k.r, k.g, k.b});
     b.depth = f.depth;
-    b.world_from_base = uwgrasp_ros::compose(pose7(T_WB), flu);
+    b.world_from_base = uwgrasp_ros::compose(uwgrasp_ros::pose7(T_WB), flu);
     frames.push_back(std::move(b));
   }
-  const auto base_from_camera = uwgrasp_ros::compose(uwgrasp_ros::inverse(flu), pose7(body_from_camera(s.mount)));
+  const auto base_from_camera = uwgrasp_ros::compose(uwgrasp_ros::inverse(flu), uwgrasp_ros::pose7(body_from_camera(s.mount)));
   uwgrasp_ros::write_bag(o.bag, uwgrasp_ros::BagTopics{}, base_from_camera, frames);
   std::printf("wrote %s: %d frames at %.1f Hz on %s (+ images, camera_info, /imu/data, /tf, /tf_static)\n",
               o.bag.c_str(), o.frames, o.rate, uwgrasp_ros::BagTopics{}.points.c_str());

@@ -15,10 +15,6 @@ namespace {
 
 using uwgrasp::Pose;
 
-Pose7 pose7(const Pose& T) {
-  const Eigen::Quaterniond q(T.linear());
-  return {{T.translation().x(), T.translation().y(), T.translation().z()}, {q.x(), q.y(), q.z(), q.w()}};
-}
 
 // The simulator's convention (sim/scene.cpp): a vehicle with roll/pitch/yaw in a z-up world has
 // its Fossen body at Rx(pi) * R(rpy); its ROS (x forward, y left, z up) body is that times Rx(pi).
@@ -59,14 +55,6 @@ TEST(RosBridge, ComposeAndInverseAreRigidTransforms) {
   EXPECT_NEAR(std::abs(id.q[3]), 1.0, 1e-12);
 }
 
-PlainCloud plain(const uwgrasp::Cloud& c) {
-  PlainCloud p;
-  p.width = c.width, p.height = c.height;
-  for (const auto& x : c.points) p.xyz.insert(p.xyz.end(), {x.x(), x.y(), x.z()});
-  for (const auto& k : c.colors) p.rgb.insert(p.rgb.end(), {k.r, k.g, k.b});
-  return p;
-}
-
 TEST(RosBridge, EngineGivesWhatTheDetectorGives) {
   const auto obj = uwgrasp::fixtures::render_object(uwgrasp::fixtures::Object::barbell, {}, 4000);
   uwgrasp::io::Config cfg;
@@ -74,7 +62,7 @@ TEST(RosBridge, EngineGivesWhatTheDetectorGives) {
   const Engine engine = make_engine(cfg);
   uwgrasp::Cloud cloud = obj.cloud;
   cloud.normals.clear(), cloud.curvature.clear();  // a sensor's cloud: points and colours
-  const PlainDetection got = engine.detect(plain(cloud), {}, "barbell", "test");
+  const PlainDetection got = engine.detect(plain_cloud(cloud), {}, "barbell", "test");
   const auto want = uwgrasp::grasp::detect(cloud, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed);
   ASSERT_TRUE(got.warning.empty()) << got.warning;
   ASSERT_EQ(got.grasps.size(), want.result.grasps.size());

@@ -19,10 +19,21 @@ namespace {
 Pose to_pose(const Pose7& a) {
   return uwgrasp::make_pose({a.p[0], a.p[1], a.p[2]}, Eigen::Quaterniond(a.q[3], a.q[0], a.q[1], a.q[2]).normalized());
 }
-Pose7 to_pose7(const Pose& T) {
+}  // namespace
+
+Pose7 pose7(const Pose& T) {
   const Eigen::Quaterniond q(T.linear());
   return {{T.translation().x(), T.translation().y(), T.translation().z()}, {q.x(), q.y(), q.z(), q.w()}};
 }
+PlainCloud plain_cloud(const uwgrasp::Cloud& c) {
+  PlainCloud p;
+  p.width = c.width, p.height = c.height;
+  for (const auto& x : c.points) p.xyz.insert(p.xyz.end(), {x.x(), x.y(), x.z()});
+  for (const auto& k : c.colors) p.rgb.insert(p.rgb.end(), {k.r, k.g, k.b});
+  return p;
+}
+
+namespace {
 std::array<double, 3> arr(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 uwgrasp::Cloud to_cloud(const PlainCloud& in) {
@@ -37,11 +48,9 @@ uwgrasp::Cloud to_cloud(const PlainCloud& in) {
   c.width = in.height > 1 ? in.width : static_cast<std::uint32_t>(n);
   c.height = in.height > 1 ? in.height : 1;
   uwgrasp::check_consistent(c, "PointCloud2");
-  std::size_t finite = 0, behind = 0;
-  for (const auto& p : c.points)
-    if (uwgrasp::is_finite(p)) ++finite, behind += p.z() <= 0.0f;
-  if (finite == 0) throw Error("PointCloud2: no finite point (" + std::to_string(n) + " points, all NaN or inf)");
-  if (double(behind) >= 0.01 * double(finite))
+  const uwgrasp::BehindCount behind = uwgrasp::behind_camera(c);
+  if (behind.finite == 0) throw Error("PointCloud2: no finite point (" + std::to_string(n) + " points, all NaN or inf)");
+  if (behind.share() >= 0.01)
     throw Error("1 % or more of the points lie behind the camera: the cloud's frame is not a camera optical "
                 "frame (z forward); publish the cloud in the camera's frame");
   return c;
@@ -53,7 +62,7 @@ PlainGrasp plain(const uwgrasp::grasp::Grasp& g, const uwgrasp::grasp::Frames& f
   const bool priced = std::isfinite(g.hold_cost);
   const double nan = std::nan("");
   PlainGrasp p;
-  p.pose = to_pose7(T_CG);
+  p.pose = pose7(T_CG);
   p.approach = arr(T_CG.linear().col(0));
   p.closing = arr(T_CG.linear().col(1));
   p.width = g.width;
@@ -65,7 +74,7 @@ PlainGrasp plain(const uwgrasp::grasp::Grasp& g, const uwgrasp::grasp::Frames& f
   p.hold_cost = priced ? g.hold_cost : nan;
   p.antipodal = g.friction.ok;
   p.mu_required = g.friction.mu_required, p.robustness = g.robustness, p.force_closure = g.force_closure;
-  p.vehicle_pose = to_pose7(T_CL * g.level_from_vehicle);
+  p.vehicle_pose = pose7(T_CL * g.level_from_vehicle);
   p.vehicle_rpy = arr(g.vehicle_rpy);
   for (const auto& e : uwgrasp::grasp::gripper_edges(T_CG, model, false))
     p.edges.push_back({e[0].x(), e[0].y(), e[0].z(), e[1].x(), e[1].y(), e[1].z()});
@@ -73,8 +82,8 @@ PlainGrasp plain(const uwgrasp::grasp::Grasp& g, const uwgrasp::grasp::Frames& f
 }
 }  // namespace
 
-Pose7 compose(const Pose7& a, const Pose7& b) { return to_pose7(to_pose(a) * to_pose(b)); }
-Pose7 inverse(const Pose7& a) { return to_pose7(to_pose(a).inverse()); }
+Pose7 compose(const Pose7& a, const Pose7& b) { return pose7(to_pose(a) * to_pose(b)); }
+Pose7 inverse(const Pose7& a) { return pose7(to_pose(a).inverse()); }
 
 Pose7 fossen_from_ros_body() { return {{0, 0, 0}, {1, 0, 0, 0}}; }  // half turn about x
 

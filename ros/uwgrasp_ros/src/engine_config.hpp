@@ -7,4 +7,7 @@ namespace uwgrasp_ros {
 
 Engine make_engine(const uwgrasp::io::Config& cfg);
 
+Pose7 pose7(const uwgrasp::Pose& T);
+PlainCloud plain_cloud(const uwgrasp::Cloud& c);
+
 }  // namespace uwgrasp_ros

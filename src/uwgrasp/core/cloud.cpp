@@ -60,6 +60,16 @@ Cloud transformed(const Cloud& cloud, const Eigen::Isometry3d& T) {
   return out;
 }
 
+BehindCount behind_camera(const Cloud& cloud) {
+  BehindCount n;
+  for (const auto& p : cloud.points) {
+    const bool f = is_finite(p);
+    n.finite += f;
+    n.behind += f & (p.z() <= 0.0f);
+  }
+  return n;
+}
+
 Eigen::Isometry3d sensor_pose(const Cloud& cloud) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = cloud.orientation.cast<double>().normalized().toRotationMatrix();

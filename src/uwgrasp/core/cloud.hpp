@@ -53,6 +53,14 @@ Cloud transformed(const Cloud& cloud, const Eigen::Isometry3d& T);
 // The sensor pose in the cloud's frame, T_FC, from viewpoint and orientation.
 Eigen::Isometry3d sensor_pose(const Cloud& cloud);
 
+// The finite points, and those at z <= 0: behind a camera at the origin looking along +z. A
+// cloud in a camera's optical frame has none behind.
+struct BehindCount {
+  std::size_t finite = 0, behind = 0;
+  double share() const { return finite ? double(behind) / double(finite) : 0.0; }
+};
+BehindCount behind_camera(const Cloud& cloud);
+
 // Marks the cloud unorganised (width = size, height = 1).
 void make_unorganised(Cloud& cloud);
 
