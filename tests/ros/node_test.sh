@@ -4,7 +4,7 @@
 # `uwgrasp detect --bag` gives for the same clouds and seed; markers, poses and diagnostics arrive;
 # the best grasp in the world frame (through tf) is judged on the true barbell; malformed clouds,
 # an unknown frame and a bad config key are each one ROS_ERROR and the next good cloud is
-# processed; the node shuts down cleanly. Prints the latency (median, 95th percentile).
+# processed; ~set_enabled and ~detect_once work; the node shuts down cleanly. Prints the latency (median, 95th percentile).
 # Usage: node_test.sh UWGRASP PROBE DEVEL_SETUP
 set -u
 BIN=$1 PROBE=$2 SETUP=$3
@@ -121,6 +121,11 @@ for word in ["no field 'y'", "point_step", "bytes", "no finite point", "empty", 
     check(sum(word in e for e in errors) == 1, "expected one ROS_ERROR naming %r, got %s" % (word, errors))
 check(len(errors) == 7, "%d errors for 7 bad inputs" % len(errors))
 check(len(bad) >= 2 and bad[0]["grasps"], "no grasps for the good cloud after the bad ones")
+# ~set_enabled false: a cloud is not processed; ~detect_once processes it and says so.
+check(bad[-1].get("while_disabled") == 0, "the disabled node processed a cloud")
+once = bad[-1].get("detect_once", {})
+check(once.get("success") and "grasps" in once.get("message", "") and len(bad) == 3,
+      "~detect_once: %s, %d GraspArrays" % (once, len(bad) - 1))
 lat = sorted(a["latency_ms"] for a in arrays)
 if lat:
     print("latency from arrival to published grasps over %d frames: median %.1f ms, 95th percentile %.1f ms"

@@ -1,7 +1,9 @@
 // uwgrasp_probe: the other end of uwgrasp_node in the integration test (node_test.sh).
 //   uwgrasp_probe listen OUT.jsonl N TIMEOUT_S   records what the node publishes until N GraspArrays
 //   uwgrasp_probe bad BAG OUT.jsonl TIMEOUT_S     sends malformed clouds, an unknown frame and a bad
-//                                                 config key, then a good cloud; records the same
+//                                                 config key, then a good cloud; records the same;
+//                                                 then disables the node, sends the good cloud
+//                                                 (nothing may come), and calls ~detect_once
 // Output: one JSON line per GraspArray ("grasps"), then one summary line ("summary").
 #include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/PoseStamped.h>
@@ -11,6 +13,8 @@
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_msgs/String.h>
+#include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
 #include <uwgrasp_msgs/GraspArray.h>
 #include <visualization_msgs/MarkerArray.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -128,6 +132,20 @@ int bad(ros::NodeHandle& nh, const std::string& bag, const std::string& out, dou
   spin_until([&] { return rec.summary["errors"].size() >= expected; }, timeout);
   pub.publish(good);  // the next good frame is processed
   spin_until([&] { return !rec.arrays.empty(); }, timeout);
+  // Disabled, a cloud is kept but not processed; ~detect_once processes it.
+  std_srvs::SetBool off;
+  off.request.data = false;
+  if (!ros::service::call("/uwgrasp_node/set_enabled", off)) return 4;
+  pub.publish(good);
+  spin_until([] { return false; }, 2.0);
+  rec.summary["while_disabled"] = rec.arrays.size() - 1;
+  std_srvs::Trigger once;
+  if (!ros::service::call("/uwgrasp_node/detect_once", once)) return 5;
+  rec.summary["detect_once"] = {{"success", bool(once.response.success)}, {"message", once.response.message}};
+  spin_until([&] { return rec.arrays.size() >= 2; }, timeout);
+  std_srvs::SetBool on;
+  on.request.data = true;
+  ros::service::call("/uwgrasp_node/set_enabled", on);
   ros::WallDuration(0.5).sleep();
   ros::spinOnce();
   rec.write(out);
