@@ -1,5 +1,6 @@
 // uwgrasp_probe: the other end of uwgrasp_node in the integration test (node_test.sh).
-//   uwgrasp_probe listen OUT.jsonl N TIMEOUT_S   records what the node publishes until N GraspArrays
+//   uwgrasp_probe listen OUT.jsonl N TIMEOUT_S   records what the node publishes until N GraspArrays,
+//                                                 or until none came for 30 s after the first
 //   uwgrasp_probe bad BAG OUT.jsonl TIMEOUT_S     sends malformed clouds, an unknown frame and a bad
 //                                                 config key, then a good cloud; records the same;
 //                                                 then disables the node, sends the good cloud
@@ -28,6 +29,7 @@ using nlohmann::json;
 
 struct Recorder {
   std::vector<json> arrays;
+  ros::WallTime last;  // when the newest GraspArray came
   json summary = {{"summary", true}, {"poses", 0}, {"markers", 0}, {"best", json::array()},
                   {"vehicle", 0}, {"diagnostics", 0}, {"errors", json::array()}};
   ros::Subscriber subs[7];
@@ -42,6 +44,7 @@ struct Recorder {
                                                      g.pose.orientation.z, g.pose.orientation.w}},
                                {"score", g.score}, {"width", g.width}});
       arrays.push_back(j);
+      last = ros::WallTime::now();
     });
     subs[1] = nh.subscribe<geometry_msgs::PoseArray>("/grasp_poses", 50, [this](const auto&) { summary["poses"] = int(summary["poses"]) + 1; });
     subs[2] = nh.subscribe<visualization_msgs::MarkerArray>("/markers", 50, [this](const auto& m) {
@@ -160,7 +163,9 @@ int main(int argc, char** argv) {
   if (mode == "listen" && argc == 5) {
     Recorder rec(nh);
     const std::size_t n = std::stoul(argv[3]);
-    spin_until([&] { return rec.arrays.size() >= n; }, std::stod(argv[4]));
+    spin_until([&] { return rec.arrays.size() >= n ||
+                            (!rec.arrays.empty() && ros::WallTime::now() - rec.last > ros::WallDuration(30.0)); },
+               std::stod(argv[4]));
     ros::WallDuration(0.3).sleep();
     ros::spinOnce();
     rec.write(argv[2]);
