@@ -8,17 +8,16 @@
 namespace uwgrasp_ros {
 
 namespace {
+// A geometry_msgs Point or Vector3 from three coordinates.
+template <class Msg = geometry_msgs::Point, class T>
+Msg xyz(const T& v) {
+  Msg p;
+  p.x = v[0], p.y = v[1], p.z = v[2];
+  return p;
+}
 template <class T>
-geometry_msgs::Point point(const T& v) {
-  geometry_msgs::Point p;
-  p.x = v[0], p.y = v[1], p.z = v[2];
-  return p;
-}
-geometry_msgs::Vector3 vector(const std::array<double, 3>& v) {
-  geometry_msgs::Vector3 p;
-  p.x = v[0], p.y = v[1], p.z = v[2];
-  return p;
-}
+geometry_msgs::Point point(const T& v) { return xyz(v); }
+geometry_msgs::Vector3 vector(const std::array<double, 3>& v) { return xyz<geometry_msgs::Vector3>(v); }
 
 uwgrasp_msgs::Grasp grasp_msg(const PlainGrasp& g, std::size_t rank) {
   uwgrasp_msgs::Grasp m;

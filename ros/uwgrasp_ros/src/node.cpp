@@ -55,25 +55,17 @@ void Node::on_cloud(const sensor_msgs::PointCloud2ConstPtr& msg) {
   wake_.notify_one();
 }
 
-void Node::on_imu(const sensor_msgs::ImuConstPtr& msg) {
-  try {
-    const auto& q = msg->orientation;
-    const auto rp = roll_pitch_from({q.x, q.y, q.z, q.w});
-    std::lock_guard<std::mutex> lock(mutex_);
-    roll_pitch_ = rp;
-  } catch (const Error& e) {
-    ROS_ERROR("uwgrasp_node: imu message ignored: %s", e.what());
-  }
-}
+void Node::on_imu(const sensor_msgs::ImuConstPtr& msg) { set_attitude(msg->orientation, "imu"); }
 
-void Node::on_odom(const nav_msgs::OdometryConstPtr& msg) {
+void Node::on_odom(const nav_msgs::OdometryConstPtr& msg) { set_attitude(msg->pose.pose.orientation, "odom"); }
+
+void Node::set_attitude(const geometry_msgs::Quaternion& q, const char* source) {
   try {
-    const auto& q = msg->pose.pose.orientation;
     const auto rp = roll_pitch_from({q.x, q.y, q.z, q.w});
     std::lock_guard<std::mutex> lock(mutex_);
     roll_pitch_ = rp;
   } catch (const Error& e) {
-    ROS_ERROR("uwgrasp_node: odom message ignored: %s", e.what());
+    ROS_ERROR("uwgrasp_node: %s message ignored: %s", source, e.what());
   }
 }
 

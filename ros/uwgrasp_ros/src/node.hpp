@@ -40,6 +40,8 @@ class Node {
   void on_cloud(const sensor_msgs::PointCloud2ConstPtr& msg);
   void on_imu(const sensor_msgs::ImuConstPtr& msg);
   void on_odom(const nav_msgs::OdometryConstPtr& msg);
+  // The capture roll and pitch from an IMU's or odometry's orientation (ROS body in ENU).
+  void set_attitude(const geometry_msgs::Quaternion& q, const char* source);
   void on_set(const std_msgs::StringConstPtr& msg);
   bool on_detect_once(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool on_enable(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
