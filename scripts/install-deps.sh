@@ -20,6 +20,8 @@ PACKAGES=(
   libtf2-dev libtf2-ros-dev libtf2-msgs-dev libtf2-geometry-msgs-dev
   # ROS 1 integration test: roscore, roslaunch, rostopic, rosbag play
   ros-core python3-rosbag python3-rostopic
+  # fuzzing (fuzz/, UWGRASP_BUILD_FUZZ): clang, libFuzzer, llvm-symbolizer for readable stacks
+  clang libclang-rt-14-dev llvm-14
 )
 
 SUDO=""

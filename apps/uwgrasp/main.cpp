@@ -6,10 +6,13 @@
 #include "commands.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/core/memory.hpp"
+#include "uwgrasp/io/atomic_file.hpp"
 
 int main(int argc, char** argv) {
   using namespace uwgrasp::app;
   uwgrasp::keep_freed_memory();  // experiments and bags run many frames in one process
+  // Interrupted runs leave every output as it was or complete, and no temporary file.
+  uwgrasp::io::remove_partial_outputs_on_signal();
   CLI::App app{"uwgrasp " UWGRASP_VERSION
                " - grasp poses for an underwater vehicle with a rigidly mounted gripper"};
   app.require_subcommand(1, 1);

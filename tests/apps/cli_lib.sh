@@ -10,6 +10,7 @@ expect() {
   rm -rf "$T/out"
   "$BIN" "$@" >"$T/stdout" 2>"$T/stderr"
   local got=$? lines
+  last_code=$got
   lines=$(wc -l <"$T/stderr")
   if [[ $got -ne $code ]] || { [[ -n $word ]] && ! grep -q -- "$word" "$T/stderr"; } || [[ $lines -gt 1 ]] ||
      [[ -e "$T/out" && -n "$(ls -A "$T/out" 2>/dev/null)" ]]; then

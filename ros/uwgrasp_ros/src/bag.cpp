@@ -13,6 +13,7 @@
 
 #include "convert.hpp"
 #include "tf_frames.hpp"
+#include "uwgrasp/io/atomic_file.hpp"
 
 namespace uwgrasp_ros {
 
@@ -77,28 +78,27 @@ void write_frame(rosbag::Bag& bag, const BagTopics& tp, const BagFrame& f) {
 void write_bag(const std::string& path, const BagTopics& tp, const Pose7& base_from_camera,
                const std::vector<BagFrame>& frames) {
   if (frames.empty()) throw Error(path + ": no frames to write");
-  const std::string tmp = path + ".tmp";
-  try {
-    rosbag::Bag bag(tmp, rosbag::bagmode::Write);
-    bag.setCompression(rosbag::compression::LZ4);
-    const ros::Time t0(frames.front().time);
-    tf2_msgs::TFMessage st;
-    st.transforms.push_back(stamped(base_from_camera, t0, tp.base_frame, tp.camera_frame));
-    auto latched = boost::make_shared<ros::M_string>();
-    (*latched)["latching"] = "1";  // rosbag play republishes /tf_static latched, as a driver does
-    (*latched)["callerid"] = "/uwgrasp_simulate";
-    (*latched)["type"] = ros::message_traits::datatype(st);  // with a header of its own, rosbag
-    (*latched)["md5sum"] = ros::message_traits::md5sum(st);  // stores only what it is given
-    (*latched)["message_definition"] = ros::message_traits::definition(st);
-    bag.write("/tf_static", ros::Time(frames.front().time - 2e-3), st, latched);
-    for (const auto& f : frames) write_frame(bag, tp, f);
-    bag.close();
-  } catch (const rosbag::BagException& e) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw Error(path + ": cannot write the bag (" + e.what() + ")");
-  }
-  std::filesystem::rename(tmp, path);
+  // Written whole or not at all (a temporary name, then a rename).
+  uwgrasp::io::write_atomically(path, [&](const std::string& tmp) {
+    try {
+      rosbag::Bag bag(tmp, rosbag::bagmode::Write);
+      bag.setCompression(rosbag::compression::LZ4);
+      const ros::Time t0(frames.front().time);
+      tf2_msgs::TFMessage st;
+      st.transforms.push_back(stamped(base_from_camera, t0, tp.base_frame, tp.camera_frame));
+      auto latched = boost::make_shared<ros::M_string>();
+      (*latched)["latching"] = "1";  // rosbag play republishes /tf_static latched, as a driver does
+      (*latched)["callerid"] = "/uwgrasp_simulate";
+      (*latched)["type"] = ros::message_traits::datatype(st);  // with a header of its own, rosbag
+      (*latched)["md5sum"] = ros::message_traits::md5sum(st);  // stores only what it is given
+      (*latched)["message_definition"] = ros::message_traits::definition(st);
+      bag.write("/tf_static", ros::Time(frames.front().time - 2e-3), st, latched);
+      for (const auto& f : frames) write_frame(bag, tp, f);
+      bag.close();
+    } catch (const rosbag::BagException& e) {
+      throw Error(path + ": cannot write the bag (" + e.what() + ")");
+    }
+  });
 }
 
 void for_each_cloud(const std::string& path, const std::string& topic, const std::string& imu_topic,

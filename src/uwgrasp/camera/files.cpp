@@ -82,11 +82,20 @@ YAML::Node load(const std::string& text, const std::string& file) {
 }
 
 // OpenCV FileStorage: the first of `names` present, as a flat list of doubles.
-std::optional<std::vector<double>> storage_matrix(const cv::FileStorage& fs,
+// Calibration matrices are at most 3 x 4: OpenCV would allocate whatever rows x cols a file
+// claims before reading its data (tens of GB, found by fuzz/).
+std::optional<std::vector<double>> storage_matrix(const cv::FileStorage& fs, const std::string& file,
                                                   std::initializer_list<const char*> names) {
   for (const char* n : names) {
     const cv::FileNode node = fs[n];
     if (node.empty()) continue;
+    if (node.isMap()) {
+      const cv::FileNode rows = node["rows"], cols = node["cols"];
+      if (!rows.isInt() || !cols.isInt() || int(rows) < 1 || int(cols) < 1 || int(rows) > 16 || int(cols) > 16)
+        throw Error(file + ": " + n + " is not a matrix of 1 to 16 rows and columns");
+    } else if (node.isSeq() && node.size() > 256) {
+      throw Error(file + ": " + n + " has " + std::to_string(node.size()) + " numbers");
+    }
     cv::Mat m;
     node >> m;
     m.convertTo(m, CV_64F);
@@ -107,7 +116,14 @@ std::pair<int, int> storage_size(const cv::FileStorage& fs, const std::string& f
   throw Error(file + ": missing the image size (image_width and image_height, or image_size)");
 }
 
+// OpenCV's FileStorage parser reads NUL and other control bytes past the end of its buffers
+// (crashes in OpenCV 4.6, found by fuzz/): a calibration file must be text.
 cv::FileStorage open_storage(const std::string& text, const std::string& file) {
+  for (const char ch : text) {
+    const auto u = static_cast<unsigned char>(ch);
+    if (u < 0x20 && u != '\t' && u != '\n' && u != '\r')
+      throw Error(file + ": not a text file (control byte " + std::to_string(int(u)) + ")");
+  }
   try {
     cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
     if (!fs.isOpened()) throw Error(file + ": not a readable OpenCV YAML/XML file");
@@ -128,15 +144,29 @@ void emit_matrix(std::ostream& out, const char* key, const double* v, int n, con
 }
 }  // namespace
 
-Pinhole read_camera(const std::string& path) {
+namespace {
+// yaml-cpp and OpenCV throw their own exceptions for shapes of file the readers above do not
+// expect (a complex key, a matrix whose data disagrees with rows x cols): one Error naming the file.
+template <typename F>
+auto refusing_library_errors(const std::string& path, F&& read) {
+  try {
+    return read();
+  } catch (const YAML::Exception& e) {
+    throw Error(path + ": malformed calibration file (" + e.what() + ")");
+  } catch (const cv::Exception& e) {
+    throw Error(path + ": malformed calibration file (" + e.err + ")");
+  }
+}
+
+Pinhole read_camera_file(const std::string& path) {
   const std::string text = read_text(path);
   Pinhole c;
   if (opencv_storage(text)) {
     const cv::FileStorage fs = open_storage(text, path);
-    const auto K = storage_matrix(fs, {"camera_matrix", "cameraMatrix", "K", "M1", "K1"});
+    const auto K = storage_matrix(fs, path, {"camera_matrix", "cameraMatrix", "K", "M1", "K1"});
     if (!K)
       throw Error(path + ": missing the camera matrix (camera_matrix, cameraMatrix, K or M1)");
-    const auto D = storage_matrix(fs, {"distortion_coefficients", "distCoeffs", "D", "D1"})
+    const auto D = storage_matrix(fs, path, {"distortion_coefficients", "distCoeffs", "D", "D1"})
                        .value_or(std::vector<double>{});
     const auto [w, h] = storage_size(fs, path);
     c = from_k_d(*K, D, w, h, path, "camera_matrix", "distortion_coefficients");
@@ -155,7 +185,7 @@ Pinhole read_camera(const std::string& path) {
   return c;
 }
 
-StereoRig read_stereo(const std::string& path) {
+StereoRig read_stereo_file(const std::string& path) {
   const std::string text = read_text(path);
   StereoRig s;
   std::vector<double> R, T;
@@ -163,15 +193,15 @@ StereoRig read_stereo(const std::string& path) {
     const cv::FileStorage fs = open_storage(text, path);
     const auto [w, h] = storage_size(fs, path);
     const auto need = [&](std::initializer_list<const char*> names, const char* what) {
-      const auto m = storage_matrix(fs, names);
+      const auto m = storage_matrix(fs, path, names);
       if (!m) throw Error(path + ": missing " + what);
       return *m;
     };
     s.left = from_k_d(need({"M1", "K1"}, "M1 (the left camera matrix)"),
-                      storage_matrix(fs, {"D1"}).value_or(std::vector<double>{}), w, h, path, "M1",
+                      storage_matrix(fs, path, {"D1"}).value_or(std::vector<double>{}), w, h, path, "M1",
                       "D1");
     s.right = from_k_d(need({"M2", "K2"}, "M2 (the right camera matrix)"),
-                       storage_matrix(fs, {"D2"}).value_or(std::vector<double>{}), w, h, path, "M2",
+                       storage_matrix(fs, path, {"D2"}).value_or(std::vector<double>{}), w, h, path, "M2",
                        "D2");
     R = need({"R"}, "R"), T = need({"T"}, "T");
   } else {
@@ -197,6 +227,15 @@ StereoRig read_stereo(const std::string& path) {
   s.T = Eigen::Map<const Eigen::Vector3d>(T.data());
   check(s, path);
   return s;
+}
+}  // namespace
+
+Pinhole read_camera(const std::string& path) {
+  return refusing_library_errors(path, [&] { return read_camera_file(path); });
+}
+
+StereoRig read_stereo(const std::string& path) {
+  return refusing_library_errors(path, [&] { return read_stereo_file(path); });
 }
 
 std::string camera_yaml(const Pinhole& c, const std::string& name) {

@@ -40,7 +40,10 @@ Cloud whole_object(const segment::Scene& scene, const segment::ObjectConfig& cfg
 
 Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cfg,
                     std::size_t& selected) {
-  if (scene.info.empty()) throw Error("segmentation found no segment to grasp");
+  if (scene.info.empty())
+    throw Error("segmentation found no segment to grasp in the " +
+                std::to_string(scene.pre.cloud.size()) +
+                " points left after preprocessing (a segment needs segment.region.min_size points)");
   if (cfg.whole) return whole_object(scene, cfg, selected);
   selected = segment::select_object(scene.info, cfg);
   std::vector<std::uint32_t> points;

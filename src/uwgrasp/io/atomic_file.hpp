@@ -9,6 +9,11 @@ namespace uwgrasp::io {
 // throws Error naming `path`.
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
 
+// Installs handlers for SIGINT, SIGTERM and SIGHUP that remove the temporary files of writes in
+// progress before the signal ends the process as it would have; and ignores SIGXFSZ, so that a
+// file size limit fails the write (an Error) rather than killing the process. For programs.
+void remove_partial_outputs_on_signal();
+
 // Writes text to path atomically.
 void write_text(const std::string& path, const std::string& text);
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/metrics.hpp"
 #include "uwgrasp/io/config_schema.hpp"
 #include "uwgrasp/vehicle/thrusters.hpp"
 
@@ -248,9 +249,15 @@ void apply_overrides(Config& cfg, const std::vector<std::string>& overrides) {
       node.reset(node[part]);
       part = next;
     }
-    node[part] = parse_yaml(value, "--set " + path);
-    read_into(cfg, root, "--set");
+    try {
+      node[part] = parse_yaml(value, "--set " + path);
+      read_into(cfg, root, "--set");
+    } catch (const YAML::Exception& e) {
+      throw Error("--set '" + o + "': " + e.what());
+    }
   }
+  // Weights that sum to 0 rank nothing: refused with the config, before any cloud is read.
+  grasp::check_weights(cfg.grasp.score.weights);
   // The vehicle prices each grasp's attitude (q_v, cannot_hold); rebuilt whenever it may change.
   cfg.grasp.score.hold_cost = vehicle::hold_cost_function(cfg.vehicle.params, cfg.vehicle.current);
 }
@@ -258,7 +265,11 @@ void apply_overrides(Config& cfg, const std::vector<std::string>& overrides) {
 Config parse_config(const std::string& yaml, const std::string& source,
                     const std::vector<std::string>& overrides) {
   Config cfg;
-  read_into(cfg, parse_yaml(yaml, source), source);
+  try {
+    read_into(cfg, parse_yaml(yaml, source), source);
+  } catch (const YAML::Exception& e) {  // a shape the reader does not expect, e.g. a complex key
+    throw Error(source + ": malformed config (" + e.what() + ")");
+  }
   apply_overrides(cfg, overrides);
   return cfg;
 }

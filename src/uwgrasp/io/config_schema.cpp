@@ -5,7 +5,6 @@
 namespace uwgrasp::io {
 
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kTiny = 1e-9;  // lower bound of strictly positive quantities
 
 void visit_preprocess(Visitor& v, cloud::PreprocessConfig& c) {

@@ -224,9 +224,19 @@ void require_mesh_files(const Ctx& c, const sim::Scene& s) {
                shape.file + ": mesh file not found");
     }
 }
-}  // namespace
 
-sim::Scene parse_scene(const std::string& text, const std::string& source, const std::string& base) {
+// yaml-cpp throws its own exceptions for shapes the readers above do not expect (a complex key,
+// a subscript of a scalar): one Error naming the file.
+template <typename F>
+auto refusing_yaml_errors(const std::string& source, F&& read) {
+  try {
+    return read();
+  } catch (const YAML::Exception& e) {
+    throw Error(source + ": malformed YAML (" + e.what() + ")");
+  }
+}
+
+sim::Scene parse_scene_yaml(const std::string& text, const std::string& source, const std::string& base) {
   const Ctx c{source, base};
   const YAML::Node root = load_yaml(text, source);
   // truth.yaml adds camera, noise, labels, sensor and seed: it stays a readable scene.
@@ -254,12 +264,19 @@ sim::Scene parse_scene(const std::string& text, const std::string& source, const
   }
   return s;
 }
+}  // namespace
+
+sim::Scene parse_scene(const std::string& text, const std::string& source, const std::string& base) {
+  return refusing_yaml_errors(source, [&] { return parse_scene_yaml(text, source, base); });
+}
 
 FlatPort load_port(const std::string& path) {
-  const Ctx c{path, fs::path(path).parent_path().string()};
-  const YAML::Node root = load_yaml(read_file(path, "port file"), path);
-  if (!root.IsMap()) c.fail("", "expected distance, thickness, n_air, n_glass, n_water");
-  return port(c, root, "port");
+  return refusing_yaml_errors(path, [&] {
+    const Ctx c{path, fs::path(path).parent_path().string()};
+    const YAML::Node root = load_yaml(read_file(path, "port file"), path);
+    if (!root.IsMap()) c.fail("", "expected distance, thickness, n_air, n_glass, n_water");
+    return port(c, root, "port");
+  });
 }
 
 sim::Scene load_scene(const std::string& name_or_path) {
@@ -271,14 +288,16 @@ sim::Scene load_scene(const std::string& name_or_path) {
 
 Truth load_truth(const std::string& path) {
   const std::string text = read_file(path, "truth file");
-  Truth t;
-  t.scene = parse_scene(text, path, fs::path(path).parent_path().string());
-  const Ctx c{path, fs::path(path).parent_path().string()};
-  const YAML::Node root = load_yaml(text, path);
-  truth_camera(c, root["camera"], t.info);
-  require_mesh_files(c, t.scene);
-  if (root["sensor"]) t.info.sensor = c.text(root["sensor"], "sensor");
-  return t;
+  return refusing_yaml_errors(path, [&] {
+    Truth t;
+    t.scene = parse_scene(text, path, fs::path(path).parent_path().string());
+    const Ctx c{path, fs::path(path).parent_path().string()};
+    const YAML::Node root = load_yaml(text, path);
+    truth_camera(c, root["camera"], t.info);
+    require_mesh_files(c, t.scene);
+    if (root["sensor"]) t.info.sensor = c.text(root["sensor"], "sensor");
+    return t;
+  });
 }
 
 }  // namespace uwgrasp::io

@@ -1,0 +1,94 @@
+#include "fuzz/inputs.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "uwgrasp/core/error.hpp"
+#include "uwgrasp/io/pcd.hpp"
+
+namespace uwgrasp::fuzz {
+
+namespace fs = std::filesystem;
+
+namespace {
+// The scratch folder lives in memory when /dev/shm exists (a file per execution, millions of
+// executions) and is removed when the process ends normally.
+struct ScratchDir {
+  fs::path dir;
+  ScratchDir() {
+    std::error_code ec;
+    const char* tmp = std::getenv("TMPDIR");
+    fs::path base = fs::is_directory("/dev/shm", ec) ? fs::path("/dev/shm")
+                    : tmp                             ? fs::path(tmp)
+                                                      : fs::temp_directory_path();
+    dir = base / ("uwgrasp-fuzz-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+const fs::path& scratch_dir() {
+  static ScratchDir d;
+  return d.dir;
+}
+
+bool same_point(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+  for (int i = 0; i < 3; ++i)
+    if (!(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])))) return false;
+  return true;
+}
+
+// A cloud uwgrasp accepted must be one it can write and read back unchanged.
+void round_trip(const Cloud& c, const std::string& ext) {
+  check_consistent(c, "fuzzed cloud");
+  const std::string out = (scratch_dir() / ("round_trip" + ext)).string();
+  io::save_cloud(out, c, io::PcdFormat::binary);
+  const Cloud back = io::load_cloud(out);
+  if (back.size() != c.size() || back.width != c.width || back.height != c.height)
+    throw Invariant("round trip changed the cloud's size or layout");
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (!same_point(back.points[i], c.points[i])) throw Invariant("round trip changed a point");
+  if (back.has_colors() != c.has_colors() || back.has_labels() != c.has_labels())
+    throw Invariant("round trip changed the fields");
+}
+
+void cloud_file(Bytes in, const std::string& ext) {
+  Cloud c;
+  try {
+    c = io::load_cloud(scratch_file(in, ext));
+  } catch (const Error&) {
+    return;
+  }
+  round_trip(c, ext);
+}
+}  // namespace
+
+std::string scratch_file(Bytes in, const std::string& ext) {
+  const fs::path p = scratch_dir() / ("input" + ext);
+  std::ofstream f(p, std::ios::binary | std::ios::trunc);
+  f.write(reinterpret_cast<const char*>(in.data()), static_cast<std::streamsize>(in.size()));
+  f.close();
+  if (!f) throw std::runtime_error("cannot write the scratch file " + p.string());
+  return p.string();
+}
+
+void pcd(Bytes in) { cloud_file(in, ".pcd"); }
+void ply(Bytes in) { cloud_file(in, ".ply"); }
+
+const std::vector<Target>& targets() {
+  static const std::vector<Target> all = {
+      {"pcd", pcd},       {"ply", ply},   {"config", config},
+      {"scene", scene},   {"truth", truth}, {"grasps_json", grasps_json},
+      {"camera", camera}, {"stereo", stereo},
+  };
+  return all;
+}
+
+}  // namespace uwgrasp::fuzz
