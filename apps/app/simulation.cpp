@@ -1,5 +1,6 @@
 #include "app/simulation.hpp"
 
+#include <cerrno>
 #include <fstream>
 
 #include "app/common.hpp"
@@ -114,9 +115,11 @@ vehicle::ApproachTask approach_task(const Pose& level_from_vehicle, const Pose& 
 void write_png(const std::string& path, const cv::Mat& image) {
   const std::vector<std::uint8_t> bytes = viz::encode_png(image);
   io::write_atomically(path, [&](const std::string& tmp) {
+    errno = 0;
     std::ofstream out(tmp, std::ios::binary);
     out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw Error(tmp + ": cannot write");
+    out.close();  // the last bytes reach the file here: a full disk shows now
+    if (!out) throw Error(path + ": cannot write" + io::reason());
   });
 }
 

@@ -122,9 +122,10 @@ row "output path is a directory" "isdir.pcd" -- rgbd "${D[@]}" --out "$T/isdir.p
 row "output folder does not exist" "nodir" -- rgbd "${D[@]}" --out "$T/nodir/c.pcd"
 # A full disk: a 64 KiB file size limit (uwgrasp ignores SIGXFSZ, so the write fails with EFBIG).
 REAL=$BIN
-printf '#!/usr/bin/env bash\nulimit -f 64\nexec "%s" "$@"\n' "$REAL" >"$T/small_disk.sh"; chmod +x "$T/small_disk.sh"
+printf '#!/usr/bin/env bash\nmkdir -p "%s"\nulimit -f 64\nexec "%s" "$@"\n' "$O" "$REAL" >"$T/small_disk.sh"
+chmod +x "$T/small_disk.sh"
 BIN="$T/small_disk.sh"
-row "disk full (64 KiB file size limit)" "c.pcd" -- rgbd "${D[@]}" --out "$O/c.pcd"
+row "disk full (64 KiB file size limit)" "File too large" -- rgbd "${D[@]}" --out "$O/c.pcd"
 BIN=$REAL
 # Permissions: root reads and writes anything, so as root these rows run as nobody.
 mkdir -p "$T/ro" && chmod 555 "$T/ro" && chmod 711 "$T" && chmod 644 "$T/ok.pcd" && cp "$T/ok.pcd" "$T/secret.pcd" && chmod 000 "$T/secret.pcd"

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cerrno>
 #include <atomic>
 #include <csignal>
 #include <cstring>
@@ -51,6 +52,8 @@ extern "C" void remove_temporaries_and_reraise(int sig) {
 }
 }  // namespace
 
+std::string reason() { return errno ? std::string(" (") + std::strerror(errno) + ")" : std::string(); }
+
 void remove_partial_outputs_on_signal() {
   for (const int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, remove_temporaries_and_reraise);
   // A file size limit (ulimit -f) then fails the write with EFBIG, which is reported as an Error
@@ -67,6 +70,12 @@ void write_atomically(const std::string& path,
   tmp_name += ".tmp-";
   tmp_name += std::to_string(::getpid());
   const fs::path tmp = target.parent_path() / tmp_name;
+  // Say why up front when the folder is the problem: the writers below only report failure.
+  const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code folder_ec;
+  if (!fs::is_directory(folder, folder_ec)) throw Error(path + ": cannot write (no folder " + folder.string() + ")");
+  if (::access(folder.c_str(), W_OK) != 0)
+    throw Error(path + ": cannot write (" + std::strerror(errno) + ": " + folder.string() + ")");
   const int slot = remember(tmp.string());
   try {
     write(tmp.string());
@@ -85,9 +94,10 @@ void write_atomically(const std::string& path,
 void write_text(const std::string& path, const std::string& text) {
   write_atomically(path, [&](const std::string& tmp) {
     std::ofstream f(tmp, std::ios::binary);
+    errno = 0;
     f << text;
     f.close();
-    if (!f) throw Error(path + ": cannot write");
+    if (!f) throw Error(path + ": cannot write" + reason());
   });
 }
 

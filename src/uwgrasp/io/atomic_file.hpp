@@ -14,6 +14,10 @@ void write_atomically(const std::string& path, const std::function<void(const st
 // file size limit fails the write (an Error) rather than killing the process. For programs.
 void remove_partial_outputs_on_signal();
 
+// " (the C library's reason)" for the last failed system call, or "" when errno is 0: set
+// errno = 0 before a write whose failure is only a return value.
+std::string reason();
+
 // Writes text to path atomically.
 void write_text(const std::string& path, const std::string& text);
 

@@ -1,6 +1,8 @@
 #include "uwgrasp/io/header_check.hpp"
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -38,6 +40,22 @@ struct Header {
   std::streamoff data_offset = 0;
 };
 
+// A header word as text a terminal shows: other bytes as \xNN (a PNG's magic, say).
+std::string printable(const std::string& w) {
+  std::string out;
+  for (const char ch : w.substr(0, 40)) {
+    const auto u = static_cast<unsigned char>(ch);
+    if (u >= 0x20 && u < 0x7f) {
+      out += ch;
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", u);
+      out += buf;
+    }
+  }
+  return out;
+}
+
 // PCL's reader misreads a header with a line it does not know (a null read in PCL 1.13, found
 // by fuzz/), so only the PCD v0.7 keys are let through, each once.
 bool pcd_key(const std::string& k) {
@@ -52,7 +70,7 @@ Header read_header(const std::string& path, std::ifstream& f) {
   for (int n = 0; n < 64 && std::getline(f, line); ++n) {
     const Words w = split(line);
     if (w.empty() || w[0][0] == '#') continue;
-    if (!pcd_key(w[0])) bad(path, "unknown header line '" + w[0] + "'");
+    if (!pcd_key(w[0])) bad(path, "unknown header line '" + printable(w[0]) + "'");
     if (h.entries.count(w[0])) bad(path, "two " + w[0] + " lines");
     h.entries[w[0]] = Words(w.begin() + 1, w.end());
     if (w[0] == "DATA") {
@@ -147,6 +165,7 @@ struct PlyElement {
   std::size_t count = 0, row_bytes = 0;
   bool has_list = false;
   std::vector<std::string> properties;
+  std::vector<std::string> types;  // "list" for a list property
 };
 
 [[noreturn]] void bad_ply(const std::string& path, const std::string& what) {
@@ -167,8 +186,31 @@ void ply_property(const std::string& path, const Words& w, std::vector<PlyElemen
   for (const auto& p : e.properties)
     if (p == name) bad_ply(path, "two properties named '" + name + "' in element " + e.name);
   e.properties.push_back(name);
+  e.types.push_back(list ? "list" : w[1]);
   e.has_list = e.has_list || list;
   if (!list) e.row_bytes += ply_type_size(w[1]);
+}
+
+// PCL packs red, green and blue (and alpha) into one field as it meets them: a vertex with only
+// some of them, in another order or of another type is read into the wrong bytes (found by
+// fuzz/: the points change), so colour must come whole, in order, one uchar a channel.
+void check_ply_colour(const std::string& path, const std::vector<PlyElement>& elements) {
+  for (const auto& e : elements) {
+    if (e.name != "vertex") continue;
+    const auto& p = e.properties;
+    const auto at = std::find(p.begin(), p.end(), "red");
+    std::size_t i = std::size_t(at - p.begin());
+    const bool any = std::any_of(p.begin(), p.end(), [](const std::string& n) {
+      return n == "red" || n == "green" || n == "blue" || n == "alpha";
+    });
+    if (!any) return;
+    const bool whole = i + 2 < p.size() && p[i + 1] == "green" && p[i + 2] == "blue" &&
+                       (std::count(p.begin(), p.end(), "alpha") == 0 || (i + 3 < p.size() && p[i + 3] == "alpha"));
+    if (!whole) bad_ply(path, "vertex colour is not red, green, blue (and alpha) in a row");
+    for (std::size_t k = i; k < p.size() && k < i + 4; ++k)
+      if ((k < i + 3 || p[k] == "alpha") && e.types[k] != "uchar" && e.types[k] != "uint8")
+        bad_ply(path, "colour property " + p[k] + " is " + e.types[k] + ", not uchar");
+  }
 }
 
 // PCL sizes an organised cloud from obj_info num_cols x num_rows and writes the vertices into
@@ -192,9 +234,11 @@ void check_ply_grid(const std::string& path, const std::map<std::string, std::st
   }
   if (info.count("num_cols") != info.count("num_rows"))
     bad_ply(path, "obj_info gives one of num_cols and num_rows without the other");
-  if (info.count("num_cols") && cells[0] * cells[1] < vertices)
-    bad_ply(path, "obj_info num_cols x num_rows (" + std::to_string(cells[0] * cells[1]) + ") below the " +
-                      std::to_string(vertices) + " vertices");
+  // Without a range_grid PCL fills the grid with the vertices in order: a grid larger than them
+  // leaves cells it never writes (garbage points, found by fuzz/), a smaller one overflows.
+  if (info.count("num_cols") && (has_grid ? cells[0] * cells[1] < vertices : cells[0] * cells[1] != vertices))
+    bad_ply(path, "obj_info num_cols x num_rows (" + std::to_string(cells[0] * cells[1]) + ") " +
+                      (has_grid ? "below" : "is not") + " the " + std::to_string(vertices) + " vertices");
   if (has_grid && grid != cells[0] * cells[1])
     bad_ply(path, "range_grid of " + std::to_string(grid) + " cells, obj_info gives " +
                       std::to_string(cells[0] * cells[1]));
@@ -219,6 +263,7 @@ void check_ply(const std::string& path) {
     if (w[0] == "end_header") {
       if (format.empty()) bad_ply(path, "no format line");
       check_ply_grid(path, info, elements);
+      check_ply_colour(path, elements);
       const auto body = std::filesystem::file_size(path) - static_cast<std::size_t>(f.tellg());
       std::size_t need = 0;  // bytes (binary) or lines (ascii) the leading list-free elements take
       for (const auto& e : elements) {
@@ -238,11 +283,11 @@ void check_ply(const std::string& path) {
     } else if (w[0] == "element") {
       if (w.size() != 3 || w[2].empty() || w[2].size() > 10 || w[2].find_first_not_of("0123456789") != std::string::npos)
         bad_ply(path, "element line '" + line + "' (want 'element NAME COUNT', COUNT below 2^32)");
-      elements.push_back({w[1], std::stoull(w[2]), 0, false, {}});
+      elements.push_back({w[1], std::stoull(w[2]), 0, false, {}, {}});
     } else if (w[0] == "property") {
       ply_property(path, w, elements);
     } else {
-      bad_ply(path, "unknown header line '" + w[0] + "'");
+      bad_ply(path, "unknown header line '" + printable(w[0]) + "'");
     }
   }
   throw Error(path + ": malformed ply file (no end_header)");

@@ -5,6 +5,7 @@
 #include <pcl/io/ply_io.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 
@@ -84,6 +85,7 @@ void save_cloud(const std::string& path, const Cloud& cloud, PcdFormat format) {
   const Eigen::Quaternionf orient = cloud.orientation;
   write_atomically(path, [&](const std::string& tmp) {
     int rc = 0;
+    errno = 0;
     if (ext == ".ply") {
       rc = pcl::PLYWriter().write(tmp, blob, origin, orient, true, false);
     } else {
@@ -97,7 +99,7 @@ void save_cloud(const std::string& path, const Cloud& cloud, PcdFormat format) {
           break;
       }
     }
-    if (rc < 0) throw Error(path + ": cannot write");
+    if (rc < 0) throw Error(path + ": cannot write" + reason());
   });
 }
 
