@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "fuzz/inputs.hpp"
+#include "uwgrasp/camera/files.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/pcd.hpp"
 
@@ -52,6 +53,8 @@ TEST(FuzzRegressions, TheSeedsAreValidInputs) {
   // The hand-written seeds are inputs uwgrasp accepts, so the fuzzers start inside the format.
   for (const auto& f : inputs_of("pcd", false)) EXPECT_NO_THROW(io::load_cloud(f.string())) << f;
   for (const auto& f : inputs_of("ply", false)) EXPECT_NO_THROW(io::load_cloud(f.string())) << f;
+  for (const auto& f : inputs_of("camera", false)) EXPECT_NO_THROW(camera::read_camera(f.string())) << f;
+  for (const auto& f : inputs_of("stereo", false)) EXPECT_NO_THROW(camera::read_stereo(f.string())) << f;
   // What fuzz/ found: each past failure is now refused with an Error naming the file.
   for (const char* t : {"pcd", "ply"}) {
     for (const auto& f : inputs_of(t)) {

@@ -1,4 +1,5 @@
 #include "uwgrasp/camera/files.hpp"
+#include "uwgrasp/camera/xml_check.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -124,6 +125,7 @@ cv::FileStorage open_storage(const std::string& text, const std::string& file) {
     if (u < 0x20 && u != '\t' && u != '\n' && u != '\r')
       throw Error(file + ": not a text file (control byte " + std::to_string(int(u)) + ")");
   }
+  if (text.compare(text.find_first_not_of(" \t\r\n"), 5, "<?xml") == 0) check_xml(text, file);
   try {
     cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
     if (!fs.isOpened()) throw Error(file + ": not a readable OpenCV YAML/XML file");
