@@ -39,10 +39,11 @@ const fs::path& scratch_dir() {
   return d.dir;
 }
 
+// A point with any coordinate not finite is no point (is_finite); writers may store it as
+// NaN, NaN, NaN (PCL's PLY writer leaves it out of an organised cloud's range_grid).
 bool same_point(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
-  for (int i = 0; i < 3; ++i)
-    if (!(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])))) return false;
-  return true;
+  if (!is_finite(a) || !is_finite(b)) return is_finite(a) == is_finite(b);
+  return a == b;
 }
 
 // A cloud uwgrasp accepted must be one it can write and read back unchanged.

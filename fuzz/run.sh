@@ -5,6 +5,8 @@
 # Fails on the first crash, leak, timeout, out-of-memory or failed invariant, naming the input.
 # Usage: fuzz/run.sh BUILD_DIR SECONDS [RUNS] [--jobs N] [TARGET...]   (RUNS 0: no limit;
 #        N targets at a time, default 1)
+# FUZZ_SEED=N fixes libFuzzer's random seed (CI sets it, so a CI run repeats a local one of the
+# same length); unset, every run explores differently.
 # Writes BUILD_DIR/fuzz/summary.tsv: target, executions, coverage, features, exec/s, corpus size.
 set -euo pipefail
 build=$(cd "$1" && pwd); seconds=$2; runs=${3:-0}; shift 3 2>/dev/null || shift $#
@@ -42,6 +44,7 @@ run_one() {
   args=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len="$(max_len_of "$t")"
         -print_final_stats=1 -artifact_prefix="$out/artifacts/$t-")
   [[ $runs -gt 0 ]] && args+=(-runs="$runs")
+  [[ -n ${FUZZ_SEED:-} ]] && args+=(-seed="$FUZZ_SEED")
   d=$(dict_of "$t"); [[ -n $d ]] && args+=(-dict="$src/fuzz/dict/$d.dict")
   if ! "$bin" "${args[@]}" "$work" "${seeds[@]}" >"$log" 2>&1; then
     { echo "fuzz $t: FAILED; from $log:"

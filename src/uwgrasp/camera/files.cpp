@@ -130,7 +130,7 @@ cv::FileStorage open_storage(const std::string& text, const std::string& file) {
     cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
     if (!fs.isOpened()) throw Error(file + ": not a readable OpenCV YAML/XML file");
     return fs;
-  } catch (const cv::Exception&) {
+  } catch (const std::exception&) {  // cv::Exception, and std::length_error from its parser
     throw Error(file + ": not a readable OpenCV YAML/XML file");
   }
 }

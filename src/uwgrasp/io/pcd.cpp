@@ -86,7 +86,14 @@ void save_cloud(const std::string& path, const Cloud& cloud, PcdFormat format) {
   write_atomically(path, [&](const std::string& tmp) {
     int rc = 0;
     errno = 0;
-    if (ext == ".ply") {
+    if (ext == ".ply" && cloud.empty()) {
+      // PCL's PLY writer refuses an empty cloud; an empty segment is still a file to write.
+      std::ofstream out(tmp, std::ios::binary);
+      out << "ply\nformat binary_little_endian 1.0\nelement vertex 0\n"
+             "property float x\nproperty float y\nproperty float z\nend_header\n";
+      out.close();
+      if (!out) rc = -1;
+    } else if (ext == ".ply") {
       rc = pcl::PLYWriter().write(tmp, blob, origin, orient, true, false);
     } else {
       pcl::PCDWriter w;
