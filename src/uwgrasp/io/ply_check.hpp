@@ -1,6 +1,7 @@
 #pragma once
 // Internal to io/: the PLY header as header_check.cpp reads it, and the check of its range_grid.
 #include <istream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,12 @@ struct PlyElement {
 
 // Bytes of a PLY scalar type; 0 for a name that is not one.
 std::size_t ply_type_size(const std::string& t);
+
+// The vertex colour must be whole (red, green, blue, alpha in a row, uchar); the obj_info grid
+// (num_cols x num_rows) must hold the vertices, and equal them without a range_grid. Throw Error.
+void check_ply_colour(const std::string& path, const std::vector<PlyElement>& elements);
+void check_ply_grid(const std::string& path, const std::map<std::string, std::string>& info,
+                    const std::vector<PlyElement>& elements);
 
 // PCL fills an organised cloud's cells from the range_grid element: each cell lists at most one
 // vertex, which must exist. A cell naming a vertex past the end, or several, leaves PCL reading
