@@ -225,7 +225,12 @@ void check_ply(const std::string& path) {
     if (!line.empty() && static_cast<unsigned char>(line[0]) <= ' ')
       bad_ply(path, "a header line starts with blank space or a control byte");
     const Words w = split(line);
-    if (w.size() == 3 && w[0] == "obj_info") info[w[1]] = w[2];
+    // PCL sizes organised clouds from these two (by prefix, taking the last): each once, alone.
+    if (w.size() >= 2 && w[0] == "obj_info" && (w[1].rfind("num_cols", 0) == 0 || w[1].rfind("num_rows", 0) == 0)) {
+      const std::string key = w[1].substr(0, 8);
+      if (w.size() != 3 || info.count(key)) bad_ply(path, "obj_info " + printable(w[1]) + " is not one 'obj_info KEY N' line");
+      info[key] = w[2];
+    }
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "end_header") {
       if (format.empty()) bad_ply(path, "no format line");
