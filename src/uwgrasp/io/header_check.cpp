@@ -214,8 +214,8 @@ void ply_property(const std::string& path, const Words& w, std::vector<PlyElemen
 void check_ply(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   std::string line;
-  if (!std::getline(f, line) || line.rfind("ply", 0) != 0)
-    throw Error(path + ": malformed ply file (it does not start with 'ply')");
+  if (!std::getline(f, line) || (line != "ply" && line != "ply\r"))
+    throw Error(path + ": malformed ply file (its first line is not 'ply')");
   std::string format;
   std::vector<PlyElement> elements;
   std::map<std::string, std::string> info;  // obj_info KEY VALUE
