@@ -70,6 +70,8 @@ Header read_header(const std::string& path, std::ifstream& f) {
   std::string line;
   for (int n = 0; n < 64 && std::getline(f, line); ++n) {
     const Words w = split(line);
+    // PCL skips an empty line but reads a null pointer on one of blank space only (found by fuzz/).
+    if (w.empty() && !line.empty()) bad(path, "a header line of blank space only");
     if (w.empty() || w[0][0] == '#') continue;
     if (!pcd_key(w[0])) bad(path, "unknown header line '" + printable(w[0]) + "'");
     if (h.entries.count(w[0])) bad(path, "two " + w[0] + " lines");
