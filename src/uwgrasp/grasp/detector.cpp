@@ -10,7 +10,6 @@
 #include <functional>
 #include <string>
 
-#include "uwgrasp/cloud/kdtree.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/grasp/gate.hpp"
 #include "uwgrasp/grasp/robust.hpp"
@@ -37,9 +36,9 @@ struct SampleInputs {
 };
 
 
-std::vector<Candidate> sample(SamplerKind kind, const SampleInputs& in, const GraspConfig& cfg,
-                              const Frames& f, std::uint64_t seed, std::uint32_t count,
-                              std::uint32_t first) {
+std::vector<Candidate> draw(SamplerKind kind, const SampleInputs& in, const GraspConfig& cfg,
+                            const Frames& f, std::uint64_t seed, std::uint32_t count,
+                            std::uint32_t first, std::vector<char>& passed) {
   const Eigen::Matrix3d R_BG = f.body_from_gripper.linear();
   const LevelCloud& l = in.l;
   switch (kind) {
@@ -56,37 +55,31 @@ std::vector<Candidate> sample(SamplerKind kind, const SampleInputs& in, const Gr
       const std::function<bool(const Candidate&)> clear = [&](const Candidate& c) { return in.gate.passes(c); };
       return sample_antipodal(in.model.points, in.model.normals, in.shape, cfg.sampler, R_BG,
                               max_grasp_width(in.gripper), -palm.hi.x(), palm.half().y(),
-                              palm.half().z(), seed, count, first, clear, enough);
+                              palm.half().z(), seed, count, first, clear, enough, &passed);
     }
     default: return sample_normal(l.points, cfg.sampler, R_BG, seed, count, first);
   }
 }
 
-// Median distance to the nearest neighbour: the cloud's own "voxel size" when none was set.
-double median_spacing(const std::vector<Eigen::Vector3f>& pts) {
-  const cloud::KdTree tree(pts);
-  const cloud::Neighbours nb = cloud::knn_all(tree, pts, 2);
-  std::vector<float> d;
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    if (nb.count[i] > 1) d.push_back(std::sqrt(nb.dists_of(i)[1]));
-  if (d.empty()) return 0.0;
-  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-  return d[d.size() / 2];
+// The candidates drawn and, in `passed`, whether each already passed every check (the gate,
+// while sampling): those need not be checked again. Only the antipodal sampler checks as it draws.
+std::vector<Candidate> sample(SamplerKind kind, const SampleInputs& in, const GraspConfig& cfg,
+                              const Frames& f, std::uint64_t seed, std::uint32_t count,
+                              std::uint32_t first, std::vector<char>& passed) {
+  passed.clear();
+  std::vector<Candidate> c = draw(kind, in, cfg, f, seed, count, first, passed);
+  passed.resize(c.size(), 0);
+  return c;
 }
 
-double max_inliers(const ScoreConfig& s, const Gripper& g, const LevelCloud& l, double leaf) {
-  if (s.inlier_mode == InlierMode::fixed) return s.max_inliers;
-  if (!(leaf > 0.0)) leaf = median_spacing(l.points);
-  if (!(leaf > 0.0)) throw Error("derived maximum inliers: the object's points all coincide");
-  const Eigen::Vector3f size = g.closing.hi - g.closing.lo;
-  return s.inlier_mode == InlierMode::volume ? max_inliers_volume(size, leaf)
-                                             : max_inliers_surface(size, leaf);
-}
 
 struct Pool {
   std::vector<Candidate> candidates;
   std::vector<Check> checks;
-  void add(std::vector<Candidate> c, std::vector<Check> k) {
+  std::vector<char> gated;  // passed every check while sampling
+  void add(std::vector<Candidate> c, std::vector<Check> k, const std::vector<char>& passed) {
+    gated.insert(gated.end(), passed.begin(), passed.end());
+    gated.resize(candidates.size() + c.size(), 0);
     candidates.insert(candidates.end(), c.begin(), c.end());
     std::move(k.begin(), k.end(), std::back_inserter(checks));
   }
@@ -211,21 +204,23 @@ SamplerKind run_auto(const SampleInputs& in, const GraspConfig& cfg, const Frame
   std::size_t best_feasible = 0;
   for (SamplerKind k : kinds) {
     timer.start("sample");
-    auto c = sample(k, in, cfg, f, seed, pilot, 0);
+    std::vector<char> passed;
+    auto c = sample(k, in, cfg, f, seed, pilot, 0, passed);
     timer.start("check");
     auto checks = check_candidates(bvh, g, c);
     std::size_t feasible = 0;
     for (std::size_t i = 0; i < c.size(); ++i)
-      feasible += checks[i].feasible() && in.gate.after_check(c[i]) == Reject::none;
+      feasible += checks[i].feasible() && (passed[i] || in.gate.after_check(c[i]) == Reject::none);
     if (feasible > best_feasible) best = k, best_feasible = feasible;
-    pool.add(std::move(c), std::move(checks));
+    pool.add(std::move(c), std::move(checks), passed);
   }
   const auto used = std::min<std::uint32_t>(n, std::uint32_t(kinds.size()) * pilot);
   timer.start("sample");
-  auto c = sample(best, in, cfg, f, seed, n - used, pilot);
+  std::vector<char> passed;
+  auto c = sample(best, in, cfg, f, seed, n - used, pilot, passed);
   timer.start("check");
   auto checks = check_candidates(bvh, g, c);
-  pool.add(std::move(c), std::move(checks));
+  pool.add(std::move(c), std::move(checks), passed);
   return best;
 }
 }  // namespace
@@ -249,7 +244,7 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   ObjectGrasps out;
   out.frames = make_frames(cfg.frames);
   const LevelCloud l = to_level(object, out.frames);
-  out.max_inliers = max_inliers(cfg.score, g, l, leaf);
+  out.max_inliers = max_inliers(cfg.score, g, l.points, leaf);
   timer.start("sample");  // first, so the stages print in pipeline order
   timer.start("shape");
   const Model model = object_model(l, object, g, cfg, around, out);
@@ -266,14 +261,16 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
     out.sampler = run_auto(inputs, cfg, out.frames, model.gripper, bvh, seed, timer, pool);
   } else {
     timer.start("sample");
-    auto c = sample(cfg.sampler.kind, inputs, cfg, out.frames, seed, cfg.sampler.samples, 0);
+    std::vector<char> passed;
+    auto c = sample(cfg.sampler.kind, inputs, cfg, out.frames, seed, cfg.sampler.samples, 0, passed);
     timer.start("check");
     auto checks = check_candidates(bvh, model.gripper, c);
-    pool.add(std::move(c), std::move(checks));
+    pool.add(std::move(c), std::move(checks), passed);
   }
   timer.start("reach");  // with the shape and the shadow
   tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
-    if (pool.checks[i].feasible()) pool.checks[i].reason = gate.after_check(pool.candidates[i]);
+    // A candidate that passed the gate while sampling passed these very checks.
+    if (pool.checks[i].feasible() && !pool.gated[i]) pool.checks[i].reason = gate.after_check(pool.candidates[i]);
   });
   timer.start("score");
   if (cfg.score.mode == ScoreMode::thesis) {

@@ -14,25 +14,42 @@ namespace uwgrasp::grasp {
 namespace {
 // Where a solid meets a point along the approach: the gripper at offset t (0 = the grasp pose,
 // s = the standoff) holds gripper-frame point q at q + t x, so a point is hit for the t in
-// [0, s] where the segment q + t x is inside the box (slab test).
+// [0, s] where the segment q + t x is inside the box (slab test, in the solid's own frame).
 enum class Hit { none, on_approach, at_grasp };  // ordered: the worst is the largest
 
-Hit segment_hit(const Solid& b, const Eigen::Vector3f& q, float s) {
-  const Eigen::Vector3f p = b.rotation.transpose() * (q - b.centre);
-  const Eigen::Vector3f d = b.rotation.row(0).transpose();  // R^T e_x
-  float t0 = 0.0f, t1 = s;
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(d[i]) < 1e-9f) {
-      if (std::abs(p[i]) > b.half[i]) return Hit::none;
-      continue;
-    }
-    float a = (-b.half[i] - p[i]) / d[i], c = (b.half[i] - p[i]) / d[i];
-    if (a > c) std::swap(a, c);
-    t0 = std::max(t0, a), t1 = std::min(t1, c);
-    if (t0 > t1) return Hit::none;
+// A solid seen from one candidate: the map from L into the solid's own frame (p -> M p + o) and
+// the approach there (d = R^T e_x, with its reciprocals), computed once per candidate and solid
+// rather than per point: the test below runs for every point near the swept solid.
+struct SolidView {
+  Eigen::Matrix3f M;
+  Eigen::Vector3f o, half, inv_d;
+  std::array<bool, 3> across;  // the approach runs across axis i: no slab along it
+  float s;
+
+  SolidView(const Solid& b, const Candidate& c, float standoff) : half(b.half), s(standoff) {
+    M = b.rotation.transpose() * c.rotation.transpose();
+    o = -(M * c.position) - b.rotation.transpose() * b.centre;
+    const Eigen::Vector3f d = b.rotation.row(0).transpose();
+    for (int i = 0; i < 3; ++i) across[std::size_t(i)] = std::abs(d[i]) < 1e-9f, inv_d[i] = 1.0f / d[i];
   }
-  return t0 <= 0.0f ? Hit::at_grasp : Hit::on_approach;
-}
+
+  // Where the solid meets L point p along the approach (slab test of p + t d, t in [0, s]).
+  Hit hit(const Eigen::Vector3f& p_level) const {
+    const Eigen::Vector3f p = M * p_level + o;
+    float t0 = 0.0f, t1 = s;
+    for (int i = 0; i < 3; ++i) {
+      if (across[std::size_t(i)]) {
+        if (std::abs(p[i]) > half[i]) return Hit::none;
+        continue;
+      }
+      float a = (-half[i] - p[i]) * inv_d[i], c = (half[i] - p[i]) * inv_d[i];
+      if (a > c) std::swap(a, c);
+      t0 = std::max(t0, a), t1 = std::min(t1, c);
+      if (t0 > t1) return Hit::none;
+    }
+    return t0 <= 0.0f ? Hit::at_grasp : Hit::on_approach;
+  }
+};
 
 // The solid's eight corners in L at offset t along the approach.
 std::array<Eigen::Vector3f, 8> corners(const Solid& b, const Candidate& c, float t) {
@@ -59,10 +76,7 @@ Hit plane_hit(const Obstacles& o, const Solid& b, const Candidate& c, float s, f
 
 struct Query {
   const PointBvh& bvh;
-  const Solid& solid;
-  const Candidate& c;
-  float s;
-  Eigen::Matrix3f Rt;      // L to the candidate's gripper frame
+  SolidView view;
   Eigen::Vector3f lo, hi;  // the swept solid's bounds in L
   lanes::V3 mid{}, half{};  // the same as centre and half extents, broadcast once for the walk
 
@@ -86,7 +100,7 @@ struct Query {
   Hit leaf(std::uint32_t first, std::uint32_t count) const {
     Hit worst = Hit::none;
     for (std::uint32_t k = first; k < first + count && worst != Hit::at_grasp; ++k)
-      worst = std::max(worst, segment_hit(solid, Rt * (bvh.points[k] - c.position), s));
+      worst = std::max(worst, view.hit(bvh.points[k]));
     return worst;
   }
 };
@@ -157,7 +171,7 @@ Reject reach_check(const Obstacles& o, std::span<const Solid> solids, const Cand
   return verdict(solids, [&](std::size_t k) {
     const Hit plane = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
     if (plane == Hit::at_grasp || o.bvh.empty()) return plane;
-    Query q{o.bvh, solids[k], c, s, c.rotation.transpose(),
+    Query q{o.bvh, SolidView(solids[k], c, s),
             Eigen::Vector3f::Constant(std::numeric_limits<float>::max()),
             Eigen::Vector3f::Constant(std::numeric_limits<float>::lowest()), {}, {}};
     for (float t : {0.0f, s})
@@ -177,10 +191,10 @@ Reject reach_plane_check(const Obstacles& o, std::span<const Solid> solids, cons
 Reject reach_brute(std::span<const Eigen::Vector3f> level_points, const Obstacles& o,
                    std::span<const Solid> solids, const Candidate& c, const ReachConfig& cfg) {
   const float s = static_cast<float>(cfg.standoff);
-  const Eigen::Matrix3f Rt = c.rotation.transpose();
   return verdict(solids, [&](std::size_t k) {
     Hit worst = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
-    for (const auto& p : level_points) worst = std::max(worst, segment_hit(solids[k], Rt * (p - c.position), s));
+    const SolidView view(solids[k], c, s);
+    for (const auto& p : level_points) worst = std::max(worst, view.hit(p));
     return worst;
   });
 }

@@ -165,7 +165,7 @@ std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
                                         float palm_half_height, std::uint64_t seed,
                                         std::uint32_t count, std::uint32_t first,
                                         const std::function<bool(const Candidate&)>& clear,
-                                        std::uint32_t enough) {
+                                        std::uint32_t enough, std::vector<char>* passed_out) {
   if (points.empty()) throw Error("antipodal sampler: the object cloud is empty");
   if (normals.size() != points.size()) throw Error("antipodal sampler: the object has no normals");
   if (shape.empty()) throw Error("antipodal sampler: needs the object's shape (grasp.shape.enabled)");
@@ -196,6 +196,8 @@ std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
     done = end;
   }
   out.resize(done);
+  if (passed_out) *passed_out = clear ? std::vector<char>(passed.begin(), passed.begin() + done)
+                                      : std::vector<char>(done, 0);
   return out;
 }
 

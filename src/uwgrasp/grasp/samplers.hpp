@@ -77,7 +77,8 @@ struct ObjectShape;  // shape.hpp
 // passes is drawn again (up to 8 times): most draws otherwise put a finger, the palm or the body
 // into the object somewhere along the approach. Drawing stops early, after a block of 256, once
 // `enough` candidates passed `clear` or `clear` was called 16 times per candidate on average
-// (fewer than `count` are then returned).
+// (fewer than `count` are then returned). With `passed`, it is set to whether each returned
+// candidate passed `clear` (the detector then need not check those again).
 std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
                                         std::span<const Eigen::Vector3f> normals,
                                         const ObjectShape& shape, const SamplerConfig& cfg,
@@ -86,7 +87,8 @@ std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
                                         float palm_half_height, std::uint64_t seed,
                                         std::uint32_t count, std::uint32_t first = 0,
                                         const std::function<bool(const Candidate&)>& clear = {},
-                                        std::uint32_t enough = UINT32_MAX);
+                                        std::uint32_t enough = UINT32_MAX,
+                                        std::vector<char>* passed = nullptr);
 
 // Throws Error naming the field for a negative deviation, zero variations or a pilot share
 // outside (0, 1/3].

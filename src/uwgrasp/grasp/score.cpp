@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/core/error.hpp"
+
 namespace uwgrasp::grasp {
 
 double robust_total(const Grasp& g) {
@@ -101,6 +104,29 @@ std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
   std::vector<Grasp> all = score_all(points, normals, candidates, checks, frames, cfg, max_inliers);
   rank(all, cfg.top);
   return all;
+}
+
+namespace {
+// Median distance to the nearest neighbour: the cloud's own "voxel size" when none was set.
+double median_spacing(std::span<const Eigen::Vector3f> pts) {
+  const cloud::KdTree tree(pts);
+  const cloud::Neighbours nb = cloud::knn_all(tree, pts, 2);
+  std::vector<float> d;
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (nb.count[i] > 1) d.push_back(std::sqrt(nb.dists_of(i)[1]));
+  if (d.empty()) return 0.0;
+  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+  return d[d.size() / 2];
+}
+}  // namespace
+
+double max_inliers(const ScoreConfig& s, const Gripper& g, std::span<const Eigen::Vector3f> points, double leaf) {
+  if (s.inlier_mode == InlierMode::fixed) return s.max_inliers;
+  if (!(leaf > 0.0)) leaf = median_spacing(points);
+  if (!(leaf > 0.0)) throw Error("derived maximum inliers: the object's points all coincide");
+  const Eigen::Vector3f size = g.closing.hi - g.closing.lo;
+  return s.inlier_mode == InlierMode::volume ? max_inliers_volume(size, leaf)
+                                             : max_inliers_surface(size, leaf);
 }
 
 }  // namespace uwgrasp::grasp

@@ -100,4 +100,9 @@ Grasp score_candidate(std::span<const Eigen::Vector3f> points,
 // The robust mode's total from a grasp's scores, q_fc and robustness (see ScoreMode).
 double robust_total(const Grasp& g);
 
+// q_i's maximum (6.5): s.max_inliers when fixed, else derived from the gripper's closing region
+// and the voxel size `leaf` (the points' median spacing when 0). Throws Error when the points
+// all coincide.
+double max_inliers(const ScoreConfig& s, const Gripper& g, std::span<const Eigen::Vector3f> points, double leaf);
+
 }  // namespace uwgrasp::grasp

@@ -24,11 +24,7 @@ struct Grid {
   bool inside(int i, int j, int k) const {
     return i >= 0 && j >= 0 && k >= 0 && i < s.nx && j < s.ny && k < s.nz;
   }
-  Eigen::Vector3i cell(const V3& p) const {
-    // floor(q + 1/2), not lround: the samplers ask millions of times, and lround is a call.
-    const V3 q = (p - s.origin) / s.voxel + V3::Constant(0.5f);
-    return {int(std::floor(q.x())), int(std::floor(q.y())), int(std::floor(q.z()))};
-  }
+  Eigen::Vector3i cell(const V3& p) const { return s.cell_of(p); }
   V3 centre(int i, int j, int k) const { return s.origin + s.voxel * V3(float(i), float(j), float(k)); }
   Occupancy get(int i, int j, int k) const { return inside(i, j, k) ? s.cells[index(i, j, k)] : Occupancy::free; }
 };
@@ -156,13 +152,6 @@ void shell(Grid g, Part part, Outside outside, bool mirrored_surface, std::vecto
       }
 }
 }  // namespace
-
-Occupancy ObjectShape::at(const Eigen::Vector3f& p) const {
-  if (cells.empty()) return Occupancy::free;
-  const Grid g{const_cast<ObjectShape&>(*this)};
-  const Eigen::Vector3i c = g.cell(p);
-  return g.get(c.x(), c.y(), c.z());
-}
 
 std::size_t ObjectShape::count(Occupancy o) const { return std::size_t(std::count(cells.begin(), cells.end(), o)); }
 

@@ -22,6 +22,7 @@
 // whose contacts hold on both surfaces holds whatever the unseen part turns out to be between
 // them, and one that closes on assumed volume alone closes on nothing the camera saw.
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -65,7 +66,19 @@ struct ObjectShape {
   float noise = 0.0f;  // the surface's measured noise (sigma, m), see surface_noise
 
   bool empty() const { return cells.empty(); }
-  Occupancy at(const Eigen::Vector3f& p_level) const;  // free outside the grid
+  // The voxel p_level falls in (possibly outside the grid): floor(q + 1/2), not lround, which
+  // is a call.
+  Eigen::Vector3i cell_of(const Eigen::Vector3f& p_level) const {
+    const Eigen::Vector3f q = (p_level - origin) / voxel + Eigen::Vector3f::Constant(0.5f);
+    return {int(std::floor(q.x())), int(std::floor(q.y())), int(std::floor(q.z()))};
+  }
+  // Free outside the grid. Inline: the samplers and checks ask millions of times a frame.
+  Occupancy at(const Eigen::Vector3f& p_level) const {
+    if (cells.empty()) return Occupancy::free;
+    const Eigen::Vector3i c = cell_of(p_level);
+    if ((c.array() < 0).any() || c.x() >= nx || c.y() >= ny || c.z() >= nz) return Occupancy::free;
+    return cells[(std::size_t(c.z()) * std::size_t(ny) + std::size_t(c.y())) * std::size_t(nx) + std::size_t(c.x())];
+  }
   bool occupied(const Eigen::Vector3f& p_level) const { return at(p_level) != Occupancy::free; }
   std::size_t count(Occupancy o) const;
 };
