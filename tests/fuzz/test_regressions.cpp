@@ -59,13 +59,16 @@ TEST(FuzzRegressions, TheSeedsAreValidInputs) {
   for (const auto& f : inputs_of("stereo", false)) EXPECT_NO_THROW(camera::read_stereo(f.string())) << f;
   // What fuzz/ found: each past failure is now refused with an Error naming the file, except
   // the valid_* inputs, valid files that once broke the fuzz target's own check.
-  for (const char* t : {"pcd", "ply"}) {
-    for (const auto& f : inputs_of(t)) {
-      if (f.string().find("regressions") != std::string::npos && f.filename().string().rfind("valid_", 0) != 0) {
-        EXPECT_THROW(io::load_cloud(f.string()), Error) << f;
-      }
-    }
-  }
+  const auto past_failure = [](const fs::path& f) {
+    return f.string().find("regressions") != std::string::npos && f.filename().string().rfind("valid_", 0) != 0;
+  };
+  for (const char* t : {"pcd", "ply"})
+    for (const auto& f : inputs_of(t))
+      if (past_failure(f)) { EXPECT_THROW(io::load_cloud(f.string()), Error) << f; }
+  for (const auto& f : inputs_of("camera"))
+    if (past_failure(f)) { EXPECT_THROW(camera::read_camera(f.string()), Error) << f; }
+  for (const auto& f : inputs_of("stereo"))
+    if (past_failure(f)) { EXPECT_THROW(camera::read_stereo(f.string()), Error) << f; }
 }
 
 TEST(FuzzRegressions, RefusalsAreErrorsAndBrokenInvariantsEscape) {

@@ -1,5 +1,5 @@
 #include "uwgrasp/camera/files.hpp"
-#include "uwgrasp/camera/xml_check.hpp"
+#include "uwgrasp/camera/storage.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -23,29 +23,6 @@ std::string read_text(const std::string& path) {
   return ss.str();
 }
 
-bool opencv_storage(const std::string& text) {
-  const auto start = text.find_first_not_of(" \t\r\n");
-  return start != std::string::npos &&
-         (text.compare(start, 5, "%YAML") == 0 || text.compare(start, 5, "<?xml") == 0);
-}
-
-// A matrix of `n` numbers from a YAML node: a flat list, or ROS's {rows, cols, data}.
-std::vector<double> numbers(const YAML::Node& node, const std::string& file,
-                            const std::string& key) {
-  const YAML::Node list = node.IsMap() ? node["data"] : node;
-  if (!list || !list.IsSequence())
-    throw Error(file + ": " + key + " must be a list of numbers (or {rows, cols, data})");
-  std::vector<double> out;
-  for (const auto& v : list) {
-    try {
-      out.push_back(v.as<double>());
-    } catch (const YAML::Exception&) {
-      throw Error(file + ": " + key + " holds a value that is not a number");
-    }
-  }
-  return out;
-}
-
 Pinhole from_k_d(const std::vector<double>& K, const std::vector<double>& D, int width, int height,
                  const std::string& file, const std::string& kname, const std::string& dname) {
   if (K.size() != 9)
@@ -63,76 +40,6 @@ Pinhole from_k_d(const std::vector<double>& K, const std::vector<double>& D, int
     throw Error(file + ": " + kname + " must be [fx 0 cx; 0 fy cy; 0 0 1] (no skew)");
   for (std::size_t i = 0; i < std::min<std::size_t>(5, D.size()); ++i) c.distortion[i] = D[i];
   return c;
-}
-
-int integer(const YAML::Node& n, const std::string& file, const std::string& key) {
-  if (!n) throw Error(file + ": missing " + key);
-  try {
-    return n.as<int>();
-  } catch (const YAML::Exception&) {
-    throw Error(file + ": " + key + " must be an integer");
-  }
-}
-
-YAML::Node load(const std::string& text, const std::string& file) {
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(file + ": not valid YAML: " + e.what());
-  }
-}
-
-// OpenCV FileStorage: the first of `names` present, as a flat list of doubles.
-// Calibration matrices are at most 3 x 4: OpenCV would allocate whatever rows x cols a file
-// claims before reading its data (tens of GB, found by fuzz/).
-std::optional<std::vector<double>> storage_matrix(const cv::FileStorage& fs, const std::string& file,
-                                                  std::initializer_list<const char*> names) {
-  for (const char* n : names) {
-    const cv::FileNode node = fs[n];
-    if (node.empty()) continue;
-    if (node.isMap()) {
-      const cv::FileNode rows = node["rows"], cols = node["cols"];
-      if (!rows.isInt() || !cols.isInt() || int(rows) < 1 || int(cols) < 1 || int(rows) > 16 || int(cols) > 16)
-        throw Error(file + ": " + n + " is not a matrix of 1 to 16 rows and columns");
-    } else if (node.isSeq() && node.size() > 256) {
-      throw Error(file + ": " + n + " has " + std::to_string(node.size()) + " numbers");
-    }
-    cv::Mat m;
-    node >> m;
-    m.convertTo(m, CV_64F);
-    return std::vector<double>(m.begin<double>(), m.end<double>());
-  }
-  return std::nullopt;
-}
-
-std::pair<int, int> storage_size(const cv::FileStorage& fs, const std::string& file) {
-  if (!fs["image_width"].empty() && !fs["image_height"].empty())
-    return {int(fs["image_width"]), int(fs["image_height"])};
-  for (const char* n : {"image_size", "imageSize"}) {
-    if (fs[n].empty()) continue;
-    std::vector<int> v;
-    fs[n] >> v;
-    if (v.size() == 2) return {v[0], v[1]};
-  }
-  throw Error(file + ": missing the image size (image_width and image_height, or image_size)");
-}
-
-// OpenCV's FileStorage parser reads NUL and other control bytes past the end of its buffers
-// (crashes in OpenCV 4.6, found by fuzz/): a calibration file must be text.
-cv::FileStorage open_storage(const std::string& text, const std::string& file) {
-  for (const char ch : text) {
-    const auto u = static_cast<unsigned char>(ch);
-    if (u < 0x20 && u != '\t' && u != '\n' && u != '\r')
-      throw Error(file + ": not a text file (control byte " + std::to_string(int(u)) + ")");
-  }
-  if (text.compare(text.find_first_not_of(" \t\r\n"), 5, "<?xml") == 0) check_xml(text, file);
-  try {
-    cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-    if (!fs.isOpened()) throw Error(file + ": not a readable OpenCV YAML/XML file");
-    return fs;
-  } catch (const std::exception&) {  // cv::Exception, and std::length_error from its parser
-    throw Error(file + ": not a readable OpenCV YAML/XML file");
-  }
 }
 
 void emit_matrix(std::ostream& out, const char* key, const double* v, int n, const char* indent) {
@@ -164,16 +71,16 @@ Pinhole read_camera_file(const std::string& path) {
   const std::string text = read_text(path);
   Pinhole c;
   if (opencv_storage(text)) {
-    const cv::FileStorage fs = open_storage(text, path);
-    const auto K = storage_matrix(fs, path, {"camera_matrix", "cameraMatrix", "K", "M1", "K1"});
+    const Storage fs = open_storage(text, path);
+    const auto K = storage_matrix(fs, {"camera_matrix", "cameraMatrix", "K", "M1", "K1"});
     if (!K)
       throw Error(path + ": missing the camera matrix (camera_matrix, cameraMatrix, K or M1)");
-    const auto D = storage_matrix(fs, path, {"distortion_coefficients", "distCoeffs", "D", "D1"})
+    const auto D = storage_matrix(fs, {"distortion_coefficients", "distCoeffs", "D", "D1"})
                        .value_or(std::vector<double>{});
-    const auto [w, h] = storage_size(fs, path);
+    const auto [w, h] = storage_size(fs);
     c = from_k_d(*K, D, w, h, path, "camera_matrix", "distortion_coefficients");
   } else {
-    const YAML::Node root = load(text, path);
+    const YAML::Node root = load_yaml(text, path);
     const char* kname = root["camera_matrix"] ? "camera_matrix" : "K";
     const char* dname = root["distortion_coefficients"] ? "distortion_coefficients" : "D";
     if (!root[kname]) throw Error(path + ": missing the camera matrix (camera_matrix or K)");
@@ -192,22 +99,22 @@ StereoRig read_stereo_file(const std::string& path) {
   StereoRig s;
   std::vector<double> R, T;
   if (opencv_storage(text)) {
-    const cv::FileStorage fs = open_storage(text, path);
-    const auto [w, h] = storage_size(fs, path);
+    const Storage fs = open_storage(text, path);
+    const auto [w, h] = storage_size(fs);
     const auto need = [&](std::initializer_list<const char*> names, const char* what) {
-      const auto m = storage_matrix(fs, path, names);
+      const auto m = storage_matrix(fs, names);
       if (!m) throw Error(path + ": missing " + what);
       return *m;
     };
     s.left = from_k_d(need({"M1", "K1"}, "M1 (the left camera matrix)"),
-                      storage_matrix(fs, path, {"D1"}).value_or(std::vector<double>{}), w, h, path, "M1",
+                      storage_matrix(fs, {"D1"}).value_or(std::vector<double>{}), w, h, path, "M1",
                       "D1");
     s.right = from_k_d(need({"M2", "K2"}, "M2 (the right camera matrix)"),
-                       storage_matrix(fs, path, {"D2"}).value_or(std::vector<double>{}), w, h, path, "M2",
+                       storage_matrix(fs, {"D2"}).value_or(std::vector<double>{}), w, h, path, "M2",
                        "D2");
     R = need({"R"}, "R"), T = need({"T"}, "T");
   } else {
-    const YAML::Node root = load(text, path);
+    const YAML::Node root = load_yaml(text, path);
     const int w = integer(root["image_width"], path, "image_width"),
               h = integer(root["image_height"], path, "image_height");
     for (const char* side : {"left", "right"}) {
