@@ -79,15 +79,26 @@ struct Query {
   SolidView view;
   Eigen::Vector3f lo, hi;  // the swept solid's bounds in L
   lanes::V3 mid{}, half{};  // the same as centre and half extents, broadcast once for the walk
+  // The swept solid's bounds in the candidate's gripper frame, and the map there: a rotated
+  // hull's bounds in L hold far more of the scene than the solid does.
+  lanes::Frame4 to_gripper;
+  lanes::Box4 in_gripper;
 
-  void broadcast_bounds() {
+  Query(const PointBvh& b, const Solid& solid, const Candidate& c, float s)
+      : bvh(b), view(solid, c, s), to_gripper(c.rotation.transpose(), c.position) {
+    lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max()), hi = -lo;
+    for (float t : {0.0f, s})
+      for (const auto& p : corners(solid, c, t)) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     mid = lanes::V3::splat(0.5f * (lo + hi)), half = lanes::V3::splat(0.5f * (hi - lo));
+    const Eigen::Vector3f extent = solid.rotation.cwiseAbs() * solid.half;
+    in_gripper = lanes::Box4::splat(solid.centre - extent - s * Eigen::Vector3f::UnitX(), solid.centre + extent);
   }
 
   // The worst hit under node j of `level`: at_grasp ends the search.
   Hit walk(std::uint32_t level, std::uint32_t j) const {
     const BvhNode& n = bvh.levels[level][j];
-    const lanes::M4 near = lanes::near(lanes::load(n.cx, n.cy, n.cz), lanes::load(n.hx, n.hy, n.hz), mid, half);
+    const lanes::V3 c = lanes::load(n.cx, n.cy, n.cz), h = lanes::load(n.hx, n.hy, n.hz);
+    const lanes::M4 near = lanes::near(c, h, mid, half) & lanes::overlap(to_gripper.boxes(c, h), in_gripper);
     Hit worst = Hit::none;
     for (int t = lanes::bits(near); t != 0 && worst != Hit::at_grasp; t &= t - 1) {
       const int lane = std::countr_zero(unsigned(t));
@@ -171,13 +182,7 @@ Reject reach_check(const Obstacles& o, std::span<const Solid> solids, const Cand
   return verdict(solids, [&](std::size_t k) {
     const Hit plane = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
     if (plane == Hit::at_grasp || o.bvh.empty()) return plane;
-    Query q{o.bvh, SolidView(solids[k], c, s),
-            Eigen::Vector3f::Constant(std::numeric_limits<float>::max()),
-            Eigen::Vector3f::Constant(std::numeric_limits<float>::lowest()), {}, {}};
-    for (float t : {0.0f, s})
-      for (const auto& p : corners(solids[k], c, t)) q.lo = q.lo.cwiseMin(p), q.hi = q.hi.cwiseMax(p);
-    q.broadcast_bounds();
-    return std::max(plane, q.walk(o.bvh.top(), 0));
+    return std::max(plane, Query(o.bvh, solids[k], c, s).walk(o.bvh.top(), 0));
   });
 }
 
