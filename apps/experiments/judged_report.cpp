@@ -154,10 +154,12 @@ std::string runs_csv(const std::vector<JudgedCaseResult>& results, const JudgedP
       std::string error = run.error;
       std::replace(error.begin(), error.end(), ',', ';');
       std::replace(error.begin(), error.end(), '\n', ' ');
+      std::string outcome = top1_mode(run, p.summary.reference_mu, r.grasp_exists);
+      std::replace(outcome.begin(), outcome.end(), ',', ';');  // "no grasp, and none exists"
       const bool closes = run.has_top1 && run.top1.verdict != eval::Verdict::collision &&
                           run.top1.verdict != eval::Verdict::miss;
       csv << r.c.scene << "," << r.c.label() << "," << p.base.seed + i << ","
-          << top1_mode(run, p.summary.reference_mu, r.grasp_exists) << ","
+          << outcome << ","
           << (run.has_top1 ? num(run.top1.mu_min) : "") << "," << (closes ? num(run.top1.width) : "") << ","
           << num(run.robust) << "," << num(run.summary.precision[2]) << "," << num(run.predicted_mu) << ","
           << num(run.predicted_robustness) << "," << num(run.predicted_width) << ","
