@@ -42,12 +42,14 @@ struct Judged {
   bool exists = false;  // the judge's own search finds a grasp that holds
 };
 
-// Renders with the perfect sensor, detects with `cfg` and judges every returned grasp.
+// Renders with the perfect sensor (or `water`, with sensor noise), detects with `cfg` and
+// judges every returned grasp.
 Judged detect_and_judge(const sim::Scene& scene, io::Config cfg, std::uint64_t seed = 1,
-                        bool search_exists = true) {
+                        bool search_exists = true, const std::string& water = "") {
   const sim::World world(scene);
   sim::RenderConfig rc;
-  rc.noise.enabled = false;
+  rc.noise.enabled = !water.empty();
+  if (!water.empty()) rc.water = sim::water_preset(water);
   const Pose T_WC = sim::camera_pose(scene, {});
   const sim::Frame f = sim::render_rgbd(world, T_WC, rc, seed);
   cfg.grasp.frames.camera = *scene.camera_mount;
@@ -224,4 +226,28 @@ TEST(Holds, NoFingerInASurfaceTheFilterRemoved) {
   ASSERT_FALSE(after.evaluation.judgements.empty());
   for (const auto& j : after.evaluation.judgements)
     EXPECT_FALSE(j.verdict == eval::Verdict::collision && j.visible) << "a part in a seen surface";
+}
+
+// The torque tool standing upright in coastal water: only its thin post and foot can be held.
+// Marine snow in front of the lens (particles of a few millimetres; near the lens one covers a
+// hundred pixels) survived every filter and stood where the vehicle's hull must be for grasps
+// on the post: 95 % of the draws failed the reach check, and the detector offered no grasp on
+// 7 of 20 frames (seeds 4-8 among them) where the judge's own search finds one. Small detached
+// blobs off the seafloor are not obstacles for the vehicle (grasp/debris.hpp).
+TEST(Holds, MarineSnowDoesNotBlockTheVehicle) {
+  sim::Scene s;
+  try {
+    s = sim::builtin_scene("torque_tool");
+  } catch (const Error& e) {
+    GTEST_SKIP() << "shared data not found: " << e.what();
+  }
+  io::Config every_point;
+  every_point.grasp.reach.debris_size = 0.0;
+  int held = 0, held_before = 0;
+  for (std::uint64_t seed = 4; seed <= 7; ++seed) {
+    held += top1_holds(detect_and_judge(s, io::Config{}, seed, false, "coastal"));
+    held_before += top1_holds(detect_and_judge(s, every_point, seed, false, "coastal"));
+  }
+  EXPECT_GE(held, 3);
+  EXPECT_LE(held_before, 1) << "the scene no longer provokes the failure";
 }

@@ -13,7 +13,7 @@ Gate::Gate(const GateInputs& in)
     : in_(in), check_(in.model, in.checked), camera_from_level_(in.frames.level_from_camera.inverse()) {
   if (!in.reach.enabled) return;
   solids_ = vehicle_solids(in.gripper, in.frames, in.reach);
-  obstacles_ = make_obstacles(in.scene, in.frames);
+  obstacles_ = make_obstacles(in.scene, in.frames, in.reach);
 }
 
 Reject Gate::after_check(const Candidate& c) const {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/debris.hpp"
 #include "uwgrasp/grasp/lanes.hpp"
 
 namespace uwgrasp::grasp {
@@ -133,8 +134,9 @@ Reject verdict(std::span<const Solid> solids, HitOf hit) {
 std::vector<Solid> vehicle_solids(const Gripper& g, const Frames& f, const ReachConfig& cfg) {
   if (!(cfg.hull_size.array() > 0.0).all() || !cfg.hull_size.allFinite())
     throw Error("grasp.reach.hull_size must be positive");
-  if (!(cfg.standoff >= 0.0) || !(cfg.margin >= 0.0) || !(cfg.floor_tolerance >= 0.0))
-    throw Error("grasp.reach: standoff, margin and floor_tolerance must be >= 0");
+  if (!(cfg.standoff >= 0.0) || !(cfg.margin >= 0.0) || !(cfg.floor_tolerance >= 0.0) ||
+      !(cfg.debris_size >= 0.0) || !(cfg.debris_gap > 0.0))
+    throw Error("grasp.reach: standoff, margin, floor_tolerance and debris_size must be >= 0, debris_gap > 0");
   const Pose gripper_from_body = f.body_from_gripper.inverse();
   // The closing region's centre in the hull's own frame: inside it, nothing could be grasped.
   const Eigen::Vector3d centre_in_hull = f.body_from_gripper.translation() - cfg.hull_centre;
@@ -169,9 +171,15 @@ std::optional<Eigen::Vector4f> level_plane(const Surroundings& s, const Frames& 
   return plane;
 }
 
-Obstacles make_obstacles(const Surroundings& s, const Frames& f) {
+Obstacles make_obstacles(const Surroundings& s, const Frames& f, const ReachConfig& cfg) {
   Obstacles o;
-  if (!s.points.empty()) o.bvh = build_bvh(points_to_level(s.points, f));
+  const std::optional<Eigen::Vector4f> floor = s.has_plane ? std::optional(s.plane) : std::nullopt;
+  const std::vector<char> drop = debris(s.points, floor, float(cfg.debris_gap), float(cfg.debris_size));
+  std::vector<Eigen::Vector3f> solid;
+  solid.reserve(s.points.size());
+  for (std::size_t i = 0; i < s.points.size(); ++i)
+    if (!drop[i]) solid.push_back(s.points[i]);
+  if (!solid.empty()) o.bvh = build_bvh(points_to_level(solid, f));
   if (const auto plane = level_plane(s, f)) o.has_plane = true, o.plane = *plane;
   return o;
 }

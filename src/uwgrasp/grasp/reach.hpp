@@ -24,6 +24,10 @@ struct ReachConfig {
   double standoff = 0.3;        // the approach starts this far back along the approach axis, m
   double margin = 0.02;         // grown on every side of the hull for positioning error, m
   double floor_tolerance = 0.0;   // parts may reach this far past the fitted seafloor plane, m
+  // Detached clusters of points (gaps up to debris_gap) that fit in a box of this diagonal and
+  // do not rest on the seafloor are suspended particles, not obstacles (debris.hpp); 0: none.
+  double debris_size = 0.02;  // m
+  double debris_gap = 0.01;   // m
 };
 
 // The rest of the scene, in the camera frame.
@@ -53,7 +57,8 @@ struct Obstacles {
   bool has_plane = false;
   Eigen::Vector4f plane = Eigen::Vector4f::Zero();
 };
-Obstacles make_obstacles(const Surroundings& s, const Frames& f);
+// Without the debris (suspended particles) cfg describes.
+Obstacles make_obstacles(const Surroundings& s, const Frames& f, const ReachConfig& cfg = {});
 // The surroundings' plane in L with the camera on its positive side, if there is one.
 std::optional<Eigen::Vector4f> level_plane(const Surroundings& s, const Frames& f);
 

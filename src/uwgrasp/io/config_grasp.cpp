@@ -136,6 +136,8 @@ void visit_grasp(Visitor& v, grasp::GraspConfig& c) {
     v.field("standoff", c.reach.standoff, 0.0, 100.0);
     v.field("margin", c.reach.margin, 0.0, 10.0);
     v.field("floor_tolerance", c.reach.floor_tolerance, 0.0, 10.0);
+    v.field("debris_size", c.reach.debris_size, 0.0, 10.0);
+    v.field("debris_gap", c.reach.debris_gap, 1e-4, 1.0);
   });
   v.section("score", [&] { visit_score(v, c.score); });
 }
