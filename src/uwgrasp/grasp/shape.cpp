@@ -170,7 +170,7 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
   const Pose camera_from_level = frames.level_from_camera.inverse();
   std::vector<V3> mirrored, mirrored_normals;
   if (scene != nullptr && cfg.symmetry.enabled) {
-    const float tolerance = cfg.symmetry.tolerance + 3.0f * s.noise;
+    const float tolerance = cfg.symmetry.tolerance + cfg.symmetry.noise_sigmas * s.noise;
     const SceneView view = make_scene_view(scene->points, scene->floor, camera_from_level, cfg.resolution, level,
                                            0.5f * tolerance);
     s.planes = find_symmetry(level, view, s.noise, cfg.symmetry);

@@ -150,7 +150,7 @@ std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, c
   for (const V3& p : sample) centroid += p;
   std::vector<V3> coarse_sample;
   for (std::size_t i = 0; i < sample.size(); i += 3) coarse_sample.push_back(sample[i]);
-  const Search search{sample, coarse_sample, view, cfg.tolerance + 3.0f * noise, cfg, centroid / float(sample.size())};
+  const Search search{sample, coarse_sample, view, cfg.tolerance + cfg.noise_sigmas * noise, cfg, centroid / float(sample.size())};
   // Azimuths over half a turn: n and -n are one plane family, the tilt's sign covers the rest.
   const int azimuths = std::max(1, int(std::lround(std::numbers::pi_v<float> / cfg.angle_step)));
   const float tilt_step = 2.0f * cfg.angle_step;

@@ -71,6 +71,7 @@ void visit_shape(Visitor& v, grasp::ShapeConfig& s) {
     v.field("offset_step", m.offset_step, 1e-4, 0.05);
     v.field("samples", m.samples, 10, 1e6);
     v.field("tolerance", m.tolerance, 0.0, 0.1);
+    v.field("noise_sigmas", m.noise_sigmas, 0.0, 100.0);
     v.field("violation_weight", m.violation_weight, 0.0, 1000.0);
     v.field("max_violations", m.max_violations, 0.0, 1.0);
     v.field("min_support", m.min_support, 0.0, 1.0);
