@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "objects.hpp"
+#include "uwgrasp/core/error.hpp"
 #include "uwgrasp/grasp/frames.hpp"
 #include "uwgrasp/grasp/gate.hpp"
 #include "uwgrasp/grasp/samplers.hpp"
@@ -47,9 +48,9 @@ struct Barbell {
     return {bvh, gripper, gripper, shape, frames, &shadow, occlusion, reach, scene};
   }
   std::vector<Candidate> antipodal(const std::function<bool(const Candidate&)>& clear, std::uint32_t count,
-                                   std::uint32_t enough = UINT32_MAX) const {
+                                   std::uint32_t enough = UINT32_MAX, SamplerConfig cfg = {}) const {
     const Box& palm = gripper.solids[int(Part::palm)];
-    return sample_antipodal(model, model_normals, shape, SamplerConfig{}, frames.body_from_gripper.linear(),
+    return sample_antipodal(model, model_normals, shape, cfg, frames.body_from_gripper.linear(),
                             max_grasp_width(gripper), -palm.hi.x(), palm.half().y(), palm.half().z(), 7,
                             count, 0, clear, enough);
   }
@@ -137,6 +138,36 @@ TEST(Gate, EarlyStopIsSeededAndIndependentOfThreadCount) {
   }
   ASSERT_EQ(one.size(), many.size());
   for (std::size_t i = 0; i < one.size(); ++i) ASSERT_TRUE(same(one[i], many[i])) << i;
+}
+
+// Finer turns about the closing axis find an approach that clears everything for more draws:
+// the share of candidates that pass grows with the number of turns tried, and every candidate
+// reported as passed does pass.
+TEST(Gate, MoreTurnsPassMoreDraws) {
+  const Barbell s;
+  const Gate gate(s.inputs());
+  const auto passes = [&](const Candidate& c) { return gate.passes(c); };
+  std::vector<double> share;
+  for (std::uint32_t turns : {1u, 6u, 12u}) {
+    SamplerConfig cfg;
+    cfg.turns = turns;
+    std::vector<char> passed;
+    const Box& palm = s.gripper.solids[int(Part::palm)];
+    const auto c = sample_antipodal(s.model, s.model_normals, s.shape, cfg, s.frames.body_from_gripper.linear(),
+                                    max_grasp_width(s.gripper), -palm.hi.x(), palm.half().y(), palm.half().z(),
+                                    7, 768, 0, passes, UINT32_MAX, &passed);
+    ASSERT_EQ(passed.size(), c.size());
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      if (!passed[i]) continue;
+      ASSERT_TRUE(passes(c[i])) << "turns " << turns << ", candidate " << i;
+    }
+    share.push_back(double(std::count(passed.begin(), passed.end(), 1)) / double(c.size()));
+  }
+  EXPECT_LT(share[0], share[1]);
+  EXPECT_LE(share[1], share[2]);
+  SamplerConfig bad;
+  bad.turns = 0;
+  EXPECT_THROW(check_sampler(bad), Error);
 }
 
 }  // namespace uwgrasp::grasp

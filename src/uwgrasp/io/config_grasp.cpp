@@ -50,6 +50,7 @@ void visit_sampler(Visitor& v, grasp::SamplerConfig& s) {
   v.field("pilot", s.pilot, 0.01, 1.0 / 3.0);
   v.field("sigma_tilt", s.sigma_tilt, 0.0, kPi);
   v.field("enough", s.enough, 0, 1e8);
+  v.field("turns", s.turns, 1, 360);
 }
 
 void visit_shape(Visitor& v, grasp::ShapeConfig& s) {
