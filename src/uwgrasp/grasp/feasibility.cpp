@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 
+#include "uwgrasp/grasp/feasibility_closing.hpp"
 #include "uwgrasp/grasp/lanes.hpp"
 
 namespace uwgrasp::grasp {
@@ -17,6 +18,7 @@ namespace {
 using lanes::Box4;
 using lanes::M4;
 using lanes::V3;
+using closing_detail::Closing, closing_detail::collision;
 
 // The gripper's boxes (gripper frame) broadcast to four lanes, once per call.
 struct GripperLanes {
@@ -52,49 +54,6 @@ LocalFrame local_frame(const Gripper& g, const Candidate& c, const lanes::Frame4
   return f;
 }
 
-Reject collision(int part) { return static_cast<Reject>(int(Reject::collision_left_finger) + part); }
-
-// The solid part holding a gripper-frame point, or none.
-Reject solid_at(const Gripper& g, const Eigen::Vector3f& p) {
-  if (!g.bounds.contains(p)) return Reject::none;
-  for (int s = 0; s < kParts; ++s)
-    if (g.solids[s].contains(p)) return collision(s);
-  return Reject::none;
-}
-
-// Streaming closing-region statistics: count, nearest to the centre, extremes along y.
-struct Closing {
-  Check& out;
-  float best = std::numeric_limits<float>::max(), lo = 0, hi = 0;
-  void add(const Eigen::Vector3f& p, std::uint32_t i) {
-    const float d = p.squaredNorm();
-    if (out.inliers == 0) {
-      best = d, lo = hi = p.y();
-      out.nearest = out.left = out.right = i;
-    } else {
-      if (d < best || (d == best && i < out.nearest)) best = d, out.nearest = i;
-      if (p.y() < lo || (p.y() == lo && i < out.left)) lo = p.y(), out.left = i;
-      if (p.y() > hi || (p.y() == hi && i < out.right)) hi = p.y(), out.right = i;
-    }
-    ++out.inliers;
-  }
-  // True when no point in the gripper-frame box [lo, hi] can become the nearest point or an
-  // extreme, so a node wholly inside the closing region only adds its count.
-  bool cannot_improve(const Eigen::Vector3f& blo, const Eigen::Vector3f& bhi) const {
-    if (out.inliers == 0 || !(blo.y() > lo) || !(bhi.y() < hi)) return false;
-    const Eigen::Vector3f gap = blo.cwiseMax(-bhi).cwiseMax(0.0f);  // origin to the box
-    return gap.squaredNorm() > best;
-  }
-  void finish(const Gripper& g) {
-    if (out.inliers == 0) {
-      out.reason = Reject::empty;
-      return;
-    }
-    out.width = hi - lo;
-    if (out.width < g.config.min_aperture) out.reason = Reject::too_narrow;
-    else if (out.width > max_grasp_width(g)) out.reason = Reject::too_wide;
-  }
-};
 
 // The first of four gripper-frame points in a solid part, then its first part (NaN lanes are
 // in none).
@@ -277,28 +236,6 @@ std::vector<Check> check_candidates(const PointBvh& bvh, const Gripper& g,
   return out;
 }
 
-Check check_brute(std::span<const Eigen::Vector3f> points, const Gripper& g, const Candidate& c) {
-  Check out;
-  const lanes::Frame4 to_gripper(c.rotation.transpose(), c.position);
-  Closing acc{out};
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    const Eigen::Vector3f p = to_gripper.point(points[k]);
-    const Reject r = solid_at(g, p);
-    if (r != Reject::none) return Check{r};
-    if (g.closing.contains(p)) acc.add(p, static_cast<std::uint32_t>(k));
-  }
-  acc.finish(g);
-  return out;
-}
-
-std::vector<std::uint32_t> closing_points(std::span<const Eigen::Vector3f> points,
-                                          const Gripper& g, const Candidate& c) {
-  std::vector<std::uint32_t> out;
-  const lanes::Frame4 to_gripper(c.rotation.transpose(), c.position);
-  for (std::size_t k = 0; k < points.size(); ++k)
-    if (g.closing.contains(to_gripper.point(points[k]))) out.push_back(static_cast<std::uint32_t>(k));
-  return out;
-}
 
 void closing_indices(const PointBvh& bvh, const Gripper& g, const Candidate& c,
                      std::vector<std::uint32_t>& out) {

@@ -1,83 +1,14 @@
 #include "uwgrasp/io/scene_yaml.hpp"
 
-#include <yaml-cpp/yaml.h>
-
-#include <algorithm>
-#include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
-#include "uwgrasp/core/error.hpp"
-#include "uwgrasp/io/config_schema.hpp"
+#include "uwgrasp/io/yaml_reader.hpp"
 
 namespace uwgrasp::io {
 
 namespace {
 namespace fs = std::filesystem;
-
-struct Ctx {
-  std::string source, base;
-  [[noreturn]] void fail(const std::string& path, const std::string& msg) const {
-    throw Error(source + ": " + path + ": " + msg);
-  }
-  void keys(const YAML::Node& n, const std::string& path, std::initializer_list<const char*> ok) const {
-    if (!n.IsMap()) fail(path, "expected a mapping");
-    for (const auto& kv : n) {
-      const auto k = kv.first.as<std::string>();
-      if (std::none_of(ok.begin(), ok.end(), [&](const char* a) { return k == a; }))
-        fail(path.empty() ? k : path + "." + k, "unknown key");
-    }
-  }
-  double num(const YAML::Node& n, const std::string& path, double lo, double hi) const {
-    double v = 0;
-    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v)) fail(path, "expected a number");
-    if (!std::isfinite(v) || v < lo || v > hi)
-      fail(path, "value " + n.Scalar() + " is outside [" + shortest(lo) + ", " + shortest(hi) + "]");
-    return v;
-  }
-  bool flag(const YAML::Node& n, const std::string& path) const {
-    bool v = false;
-    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v)) fail(path, "expected true or false");
-    return v;
-  }
-  std::string text(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsScalar() || n.Scalar().empty()) fail(path, "expected a non-empty string");
-    return n.Scalar();
-  }
-  Eigen::VectorXd vec(const YAML::Node& n, const std::string& path, int size, double lo, double hi) const {
-    if (!n.IsSequence() || static_cast<int>(n.size()) != size)
-      fail(path, "expected a list of " + std::to_string(size) + " numbers");
-    Eigen::VectorXd v(size);
-    for (int i = 0; i < size; ++i) v[i] = num(n[i], path + "[" + std::to_string(i) + "]", lo, hi);
-    return v;
-  }
-  Eigen::Vector3d vec3(const YAML::Node& n, const std::string& path, double lo, double hi) const {
-    return vec(n, path, 3, lo, hi);
-  }
-  Rgb8 color(const YAML::Node& n, const std::string& path) const {
-    const Eigen::Vector3d c = vec3(n, path, 0, 255);
-    return {static_cast<std::uint8_t>(std::lround(c.x())), static_cast<std::uint8_t>(std::lround(c.y())),
-            static_cast<std::uint8_t>(std::lround(c.z()))};
-  }
-  Pose pose(const YAML::Node& n, const std::string& path) const {
-    keys(n, path, {"position", "rpy", "orientation_xyzw"});
-    Pose p = Pose::Identity();
-    if (n["position"]) p.translation() = vec3(n["position"], path + ".position", -1e4, 1e4);
-    if (n["rpy"] && n["orientation_xyzw"]) fail(path, "give rpy or orientation_xyzw, not both");
-    if (n["rpy"]) p.linear() = quat_from_rpy(vec3(n["rpy"], path + ".rpy", -10, 10)).toRotationMatrix();
-    if (n["orientation_xyzw"]) {
-      const Eigen::VectorXd q = vec(n["orientation_xyzw"], path + ".orientation_xyzw", 4, -2, 2);
-      if (q.norm() < 0.5) fail(path + ".orientation_xyzw", "is not a unit quaternion");
-      p.linear() = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
-    }
-    return p;
-  }
-  Mount mount(const YAML::Node& n, const std::string& path) const {
-    const Pose p = pose(n, path);
-    return {p.translation(), rpy_from_matrix(p.linear())};
-  }
-};
+using yaml::Ctx, yaml::load_yaml, yaml::read_file, yaml::refusing_yaml_errors;
 
 sim::Shape shape(const Ctx& c, const YAML::Node& n, const std::string& path) {
   c.keys(n, path, {"shape", "size", "radius", "length", "major", "file", "scale", "pose", "checker"});
@@ -174,67 +105,8 @@ void seafloor(const Ctx& c, const YAML::Node& n, sim::Seafloor& s) {
   if (n["texture"]) s.texture = c.num(n["texture"], "seafloor.texture", 0, 1);
 }
 
-YAML::Node load_yaml(const std::string& text, const std::string& source) {
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(source + ": not valid YAML: " + e.what());
-  }
-}
 
-std::string read_file(const std::string& path, const char* what) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open " + what);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
-// truth.yaml's camera block: its pose in W, intrinsics and range.
-void truth_camera(const Ctx& c, const YAML::Node& n, TruthInfo& t) {
-  if (!n) c.fail("camera", "missing (the camera that saw the scene)");
-  c.keys(n, "camera", {"world_from_camera", "intrinsics", "min_range", "max_range", "baseline"});
-  const auto need = [&](const YAML::Node& m, const char* key, const std::string& path) {
-    if (!m[key]) c.fail(path + "." + key, "missing");
-    return m[key];
-  };
-  t.world_from_camera = c.pose(need(n, "world_from_camera", "camera"), "camera.world_from_camera");
-  const YAML::Node k = need(n, "intrinsics", "camera");
-  c.keys(k, "camera.intrinsics", {"width", "height", "fx", "fy", "cx", "cy"});
-  const auto num = [&](const char* key, double lo, double hi) {
-    return c.num(need(k, key, "camera.intrinsics"), std::string("camera.intrinsics.") + key, lo, hi);
-  };
-  t.intrinsics.width = int(num("width", 1, 1e5)), t.intrinsics.height = int(num("height", 1, 1e5));
-  t.intrinsics.fx = num("fx", 1e-6, 1e9), t.intrinsics.fy = num("fy", 1e-6, 1e9);
-  t.intrinsics.cx = num("cx", -1e6, 1e6), t.intrinsics.cy = num("cy", -1e6, 1e6);
-  t.camera.width = std::uint32_t(t.intrinsics.width), t.camera.height = std::uint32_t(t.intrinsics.height);
-  if (n["min_range"]) t.camera.min_range = c.num(n["min_range"], "camera.min_range", 0, 1e4);
-  if (n["max_range"]) t.camera.max_range = c.num(n["max_range"], "camera.max_range", 1e-6, 1e4);
-  if (n["baseline"]) t.camera.baseline = c.num(n["baseline"], "camera.baseline", 0, 1e3);
-}
-
-// Every mesh part's file must exist: named by its key path, before any geometry is built.
-void require_mesh_files(const Ctx& c, const sim::Scene& s) {
-  for (std::size_t i = 0; i < s.objects.size(); ++i)
-    for (std::size_t p = 0; p < s.objects[i].parts.size(); ++p) {
-      const sim::Shape& shape = s.objects[i].parts[p].shape;
-      std::error_code ec;
-      if (shape.kind == sim::ShapeKind::mesh && !fs::is_regular_file(shape.file, ec))
-        c.fail("objects[" + std::to_string(i) + "].parts[" + std::to_string(p) + "].file",
-               shape.file + ": mesh file not found");
-    }
-}
-
-// yaml-cpp throws its own exceptions for shapes the readers above do not expect (a complex key,
-// a subscript of a scalar): one Error naming the file.
-template <typename F>
-auto refusing_yaml_errors(const std::string& source, F&& read) {
-  try {
-    return read();
-  } catch (const YAML::Exception& e) {
-    throw Error(source + ": malformed YAML (" + e.what() + ")");
-  }
-}
 
 sim::Scene parse_scene_yaml(const std::string& text, const std::string& source, const std::string& base) {
   const Ctx c{source, base};
@@ -286,18 +158,5 @@ sim::Scene load_scene(const std::string& name_or_path) {
   return parse_scene(read_file(name_or_path, "scene file"), name_or_path, p.parent_path().string());
 }
 
-Truth load_truth(const std::string& path) {
-  const std::string text = read_file(path, "truth file");
-  return refusing_yaml_errors(path, [&] {
-    Truth t;
-    t.scene = parse_scene(text, path, fs::path(path).parent_path().string());
-    const Ctx c{path, fs::path(path).parent_path().string()};
-    const YAML::Node root = load_yaml(text, path);
-    truth_camera(c, root["camera"], t.info);
-    require_mesh_files(c, t.scene);
-    if (root["sensor"]) t.info.sensor = c.text(root["sensor"], "sensor");
-    return t;
-  });
-}
 
 }  // namespace uwgrasp::io
