@@ -32,6 +32,29 @@ float extent_along(const ObjectShape& shape, const V3& p, const V3& u, float lim
   return last;
 }
 
+// The steps i in [first, last] whose points base + i d can lie in the shape's grid (outside
+// it every point is free), widened by a step either side against rounding: a palm line's scan
+// skips the part of it outside the grid with the same answer (sample stage 52-78 -> 49-65 ms
+// on bench/frame's frames).
+struct StepRange {
+  int first, last;
+};
+StepRange steps_in_grid(const ObjectShape& shape, const V3& base, const V3& d, int first, int last) {
+  const V3 lo = shape.origin - V3::Constant(0.5f * shape.voxel);
+  const V3 hi = lo + shape.voxel * V3(float(shape.nx), float(shape.ny), float(shape.nz));
+  float t0 = float(first), t1 = float(last);
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(d[k]) < 1e-12f) {
+      if (base[k] < lo[k] || base[k] > hi[k]) return {1, 0};
+      continue;
+    }
+    const float a = (lo[k] - base[k]) / d[k], b = (hi[k] - base[k]) / d[k];
+    t0 = std::max(t0, std::min(a, b)), t1 = std::min(t1, std::max(a, b));
+  }
+  if (t0 > t1 + 2.0f) return {1, 0};
+  return {std::max(first, int(std::floor(t0)) - 1), std::min(last, int(std::ceil(t1)) + 1)};
+}
+
 // How far the gripper must back off along -x from `centre` so that its palm face (at
 // -palm_offset, `half_width` across y, `half_height` across z) clears the model by a voxel and
 // a half (the grid's own quantisation): the furthest the model reaches towards it over a 5 x 3
@@ -43,12 +66,15 @@ float back_off(const ObjectShape& shape, const V3& centre, const V3& x, const V3
   const int steps = int(2.0f * palm_offset / step);
   int reach = -1;  // in steps; each line is scanned from the far end down to the reach so far
   for (const float a : {-1.0f, -0.5f, 0.0f, 0.5f, 1.0f})
-    for (const float b : {-1.0f, 0.0f, 1.0f})
-      for (int i = steps; i > reach; --i)
-        if (shape.occupied(centre + a * half_width * y + b * half_height * z - float(i) * step * x)) {
+    for (const float b : {-1.0f, 0.0f, 1.0f}) {
+      const V3 base = centre + a * half_width * y + b * half_height * z;
+      const StepRange r = steps_in_grid(shape, base, -step * x, reach + 1, steps);
+      for (int i = r.last; i >= r.first; --i)
+        if (shape.occupied(base - float(i) * step * x)) {
           reach = i;
           break;
         }
+    }
   if (reach < 0) return 0.0f;
   return std::max(0.0f, float(reach) * step + 1.5f * shape.voxel - palm_offset);
 }
