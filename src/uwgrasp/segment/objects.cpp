@@ -1,5 +1,6 @@
 #include "uwgrasp/segment/objects.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -141,12 +142,18 @@ std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std:
       eligible[k] = 2 * coloured >= o.points[k].size();
     }
   }
+  // Each object's bounds: an object whose box lies beyond `reach` of a part's box has no point
+  // within reach of it, and is not searched (on a real frame, most of the scene).
+  std::vector<Eigen::AlignedBox3f> box(o.points.size());
+  for (std::size_t k = 0; k < o.points.size(); ++k)
+    for (const auto i : o.points[k]) box[k].extend(cloud.points[i]);
   for (std::size_t next = 0; next < out.size(); ++next) {
     std::vector<Eigen::Vector3f> pts;
     for (const auto i : o.points[out[next]]) pts.push_back(cloud.points[i]);
     const cloud::KdTree tree(pts);
     for (std::size_t k = 0; k < o.points.size(); ++k) {
-      if (taken[k] || !eligible[k]) continue;
+      if (taken[k] || !eligible[k] || box[k].exteriorDistance(box[out[next]]) > 1.001f * reach + 1e-6f)
+        continue;
       std::uint32_t idx = 0;
       float d2 = 0;
       for (const auto i : o.points[k])
