@@ -125,6 +125,30 @@ bool by_mirrored(Grid g, int i, int j, int k) {
   return false;
 }
 
+// Minus the sum of the offsets of the voxels in the 5 x 5 x 5 block around (i, j, k) that are
+// not `outside`: a block wholly in the grid is read by strides, without a bounds test per voxel.
+template <class Outside>
+V3 away_from_mass(Grid g, int i, int j, int k, Outside outside) {
+  const ObjectShape& s = g.s;
+  Eigen::Vector3i sum = Eigen::Vector3i::Zero();
+  if (i >= 2 && j >= 2 && k >= 2 && i + 2 < s.nx && j + 2 < s.ny && k + 2 < s.nz) {
+    const std::ptrdiff_t sy = s.nx, sz = std::ptrdiff_t(s.nx) * s.ny;
+    const Occupancy* c = s.cells.data() + g.index(i, j, k);
+    for (int dk = -2; dk <= 2; ++dk)
+      for (int dj = -2; dj <= 2; ++dj) {
+        const Occupancy* row = c + dk * sz + dj * sy;
+        for (int di = -2; di <= 2; ++di)
+          if (!outside(row[di])) sum -= Eigen::Vector3i(di, dj, dk);
+      }
+  } else {
+    for (int dk = -2; dk <= 2; ++dk)
+      for (int dj = -2; dj <= 2; ++dj)
+        for (int di = -2; di <= 2; ++di)
+          if (!outside(g.get(i + di, j + dj, k + dk))) sum -= Eigen::Vector3i(di, dj, dk);
+  }
+  return sum.cast<float>();
+}
+
 // The unseen voxels (`part` says which) next to one outside the part (`outside`), with normals
 // pointing away from the part's mass around them (the sum of the offsets of the part's voxels
 // in a 5 x 5 x 5 block, negated); with `mirrored_surface`, not where mirrored points lie.
@@ -141,11 +165,7 @@ void shell(Grid g, Part part, Outside outside, bool mirrored_surface, std::vecto
                               outside(g.get(i, j - 1, k)) || outside(g.get(i, j + 1, k)) ||
                               outside(g.get(i, j, k - 1)) || outside(g.get(i, j, k + 1));
         if (!boundary || (mirrored_surface && by_mirrored(g, i, j, k))) continue;
-        V3 n = V3::Zero();
-        for (int dk = -2; dk <= 2; ++dk)
-          for (int dj = -2; dj <= 2; ++dj)
-            for (int di = -2; di <= 2; ++di)
-              if (!outside(g.get(i + di, j + dj, k + dk))) n -= V3(float(di), float(dj), float(dk));
+        const V3 n = away_from_mass(g, i, j, k, outside);
         if (n.norm() < 1e-3f) continue;  // no side faces away from the mass: not a surface
         points.push_back(g.centre(i, j, k));
         normals.push_back(n.normalized());
