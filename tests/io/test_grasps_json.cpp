@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -54,8 +56,11 @@ TEST(GraspsJson, FieldsAsSpecifiedAndByteIdenticalAcrossThreadCounts) {
 }
 
 namespace {
+// ctest runs each test in its own process, several at once: the process id keeps two tests
+// from writing the same file (GraspList.BadFieldsAreNamed read a neighbour's file once).
 std::string write_tmp(const std::string& name, const std::string& text) {
-  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string();
   std::ofstream(path) << text;
   return path;
 }
