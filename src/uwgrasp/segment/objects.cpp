@@ -143,7 +143,8 @@ std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std:
     }
   }
   // Each object's bounds: an object whose box lies beyond `reach` of a part's box has no point
-  // within reach of it, and is not searched (on a real frame, most of the scene).
+  // within reach of it, and is not searched (on a real frame, most of the scene). The 0.1 %
+  // allowance keeps a pair at exactly `reach` searched whatever the rounding of either distance.
   std::vector<Eigen::AlignedBox3f> box(o.points.size());
   for (std::size_t k = 0; k < o.points.size(); ++k)
     for (const auto i : o.points[k]) box[k].extend(cloud.points[i]);
