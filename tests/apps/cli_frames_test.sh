@@ -10,16 +10,23 @@ command -v python3 >/dev/null || { echo "SKIP: python3 is needed to read the JSO
 "$BIN" simulate --scene barbell --frame world --out "$T/world" >/dev/null 2>&1 || bad "simulate --frame world"
 grep -a -q "^VIEWPOINT 0 0 0 1 0 0 0" "$T/world/cloud.pcd" && bad "a world-frame cloud has the identity VIEWPOINT"
 C="$T/cam/config.yaml"
-"$BIN" detect "$T/cam/cloud.pcd" --config "$C" --json "$T/cam.json" >/dev/null 2>&1 || bad "detect in the camera frame"
-"$BIN" detect "$T/world/cloud.pcd" --config "$C" --json "$T/world.json" >"$T/w.txt" 2>&1 || bad "detect, VIEWPOINT"
+# The sampler's focus (grasp.sampler.focus) draws later candidates near the ones that passed, so
+# a candidate that float rounding moves across a check moves the later draws too: the same
+# grasps to the digit need it off (with it on, the best grasps are as good, not the same).
+S="grasp.sampler.focus=false"
+"$BIN" detect "$T/cam/cloud.pcd" --config "$C" --set "$S" --json "$T/cam.json" >/dev/null 2>&1 || bad "detect in the camera frame"
+"$BIN" detect "$T/world/cloud.pcd" --config "$C" --set "$S" --json "$T/world.json" >"$T/w.txt" 2>&1 || bad "detect, VIEWPOINT"
 grep -q "camera pose from the cloud's VIEWPOINT" "$T/w.txt" && ok || bad "detect does not say it used the VIEWPOINT"
 # The camera pose as the VIEWPOINT holds it (X Y Z QW QX QY QZ) -> --camera-pose X,Y,Z,QX,QY,QZ,QW
 read -r _ x y z qw qx qy qz < <(grep -a -m1 "^VIEWPOINT" "$T/world/cloud.pcd")
 "$BIN" detect "$T/cam/cloud.pcd" --frame camera --config "$C" --camera-pose "$x,$y,$z,$qx,$qy,$qz,$qw" \
   >/dev/null 2>&1 && bad "--camera-pose with --frame camera is accepted"
 
-# Same best grasp: the world file's pose is the camera file's moved by the camera pose.
-python3 - "$T/cam.json" "$T/world.json" "$x,$y,$z,$qx,$qy,$qz,$qw" <<'PY' && ok || bad "world-frame grasps differ"
+# Same best grasp: the world file's pose is the camera file's moved by the camera pose. With the
+# default settings the best grasps may differ, but lie on the same part of the object.
+"$BIN" detect "$T/cam/cloud.pcd" --config "$C" --json "$T/cam_d.json" >/dev/null 2>&1 || bad "detect (defaults)"
+"$BIN" detect "$T/world/cloud.pcd" --config "$C" --json "$T/world_d.json" >/dev/null 2>&1 || bad "detect, VIEWPOINT (defaults)"
+python3 - "$T/cam.json" "$T/world.json" "$x,$y,$z,$qx,$qy,$qz,$qw" "$T/cam_d.json" "$T/world_d.json" <<'PY' && ok || bad "world-frame grasps differ"
 import json, math, sys
 c, w = (json.load(open(p)) for p in sys.argv[1:3])
 x, y, z, qx, qy, qz, qw = map(float, sys.argv[3].split(","))
@@ -33,6 +40,9 @@ p = [a + b for a, b in zip(rot(gc["position"]), (x, y, z))]
 assert math.dist(p, gw["position"]) < 1e-3, (p, gw["position"])
 assert math.dist(rot(gc["approach"]), gw["approach"]) < 1e-3
 assert abs(gc["width"] - gw["width"]) < 1e-4 and abs(gc["score"] - gw["score"]) < 1e-4
+c, w = (json.load(open(p)) for p in sys.argv[4:6])
+p = [a + b for a, b in zip(rot(c["grasps"][0]["position"]), (x, y, z))]
+assert w["frame"] == "world" and math.dist(p, w["grasps"][0]["position"]) < 0.05, (p, w["grasps"][0]["position"])
 PY
 
 # A world cloud without its VIEWPOINT: the points lie behind the camera's origin -> clear error.
@@ -47,7 +57,7 @@ expect 2 "--frame world needs" -- detect "$T/noview.pcd" --frame world --json "$
 expect 2 "--camera-pose" -- detect "$T/noview.pcd" --camera-pose 1,2,3,0,0,0,2 --json "$T/out/g.json"
 expect 2 "--camera-pose" -- detect "$T/noview.pcd" --camera-pose 1,2,3 --json "$T/out/g.json"
 # ... and with --camera-pose it is the world cloud again.
-"$BIN" detect "$T/noview.pcd" --config "$C" --camera-pose "$x,$y,$z,$qx,$qy,$qz,$qw" --json "$T/cp.json" \
+"$BIN" detect "$T/noview.pcd" --config "$C" --set "$S" --camera-pose "$x,$y,$z,$qx,$qy,$qz,$qw" --json "$T/cp.json" \
   >/dev/null 2>&1 || bad "detect --camera-pose"
 python3 - "$T/cp.json" "$T/world.json" <<'PY' && ok || bad "--camera-pose gives other grasps than the same pose as VIEWPOINT"
 import json, math, sys

@@ -51,6 +51,7 @@ void visit_sampler(Visitor& v, grasp::SamplerConfig& s) {
   v.field("sigma_tilt", s.sigma_tilt, 0.0, kPi);
   v.field("enough", s.enough, 0, 1e8);
   v.field("turns", s.turns, 1, 360);
+  v.field("focus", s.focus);
 }
 
 void visit_shape(Visitor& v, grasp::ShapeConfig& s) {
