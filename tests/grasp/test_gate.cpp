@@ -170,4 +170,42 @@ TEST(Gate, MoreTurnsPassMoreDraws) {
   EXPECT_THROW(check_sampler(bad), Error);
 }
 
+
+// Adaptive drawing (SamplerConfig::focus): where only a small part of the object can be grasped
+// (here: only grasps centred within 3 cm of one that passes the checks), uniform draws keep a
+// small share; once the first block keeps under half, later blocks drawn near the passes keep
+// most. The pool grows between blocks only: the same candidates on one thread as on two.
+TEST(Gate, FocusDrawsNearThePassesWhereFewPlacesPass) {
+  const Barbell s;
+  const Gate gate(s.inputs());
+  const auto anywhere = [&](const Candidate& c) { return gate.passes(c); };
+  const std::vector<Candidate> some = s.antipodal(anywhere, 256);
+  const auto first = std::find_if(some.begin(), some.end(), anywhere);
+  ASSERT_NE(first, some.end());
+  const Eigen::Vector3f place = first->position;
+  const auto passes = [&](const Candidate& c) { return (c.position - place).norm() < 0.03f && gate.passes(c); };
+  const Box& palm = s.gripper.solids[int(Part::palm)];
+  const auto draw = [&](bool focus, std::vector<char>& passed) {
+    SamplerConfig cfg;
+    cfg.focus = focus;
+    return sample_antipodal(s.model, s.model_normals, s.shape, cfg, s.frames.body_from_gripper.linear(),
+                            max_grasp_width(s.gripper), -palm.hi.x(), palm.half().y(), palm.half().z(), 7,
+                            1024, 0, passes, UINT32_MAX, &passed);
+  };
+  const auto share = [](const std::vector<char>& p) { return double(std::count(p.begin(), p.end(), 1)) / double(p.size()); };
+  std::vector<char> uniform, focused, single;
+  (void)draw(false, uniform);
+  const auto many = draw(true, focused);
+  EXPECT_LT(share(uniform), 0.5);
+  EXPECT_GE(share(focused), 0.5) << "uniform " << share(uniform);
+  EXPECT_GT(share(focused), 1.5 * share(uniform));
+  std::vector<Candidate> one;
+  {
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+    one = draw(true, single);
+  }
+  ASSERT_EQ(one.size(), many.size());
+  for (std::size_t i = 0; i < one.size(); ++i) ASSERT_TRUE(same(one[i], many[i])) << i;
+  EXPECT_EQ(single, focused);
+}
 }  // namespace uwgrasp::grasp

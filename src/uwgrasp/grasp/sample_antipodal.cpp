@@ -189,12 +189,13 @@ std::vector<std::uint32_t> eligible_points(std::span<const V3> points, std::span
 }
 // Adaptive drawing (after the cross-entropy method): where an object is graspable in a few places
 // only (a lying bottle's neck; its body is wider than the gripper), most uniform draws fail every
-// check. A share of each later block's draws start from the eligible points near the drawn
-// points of the passes so far, the rest from anywhere, so that no place is given up on. The share
-// is that of the first block's (uniform) candidates that failed: about none where most places
-// pass, where uniform draws already spread the candidates over the whole object. The pool grows
-// only between blocks, in candidate order: the same seed gives the same candidates on any
-// number of threads.
+// check. When fewer than half of the first block's (uniform) candidates pass, a share of each
+// later block's draws - the share of the first block that failed - start from the eligible
+// points near the drawn points of the passes so far, the rest from anywhere, so that no place is
+// given up on. Where uniform draws keep half, they go on alone: focusing there changed the top-1s
+// of well-graspable objects without making them better (judged, 2 x 20 seeds: 1,998 against
+// 1,987 of 2,160 held). The pool grows only between blocks, in candidate order: the same seed
+// gives the same candidates on any number of threads.
 struct Focus {
   static constexpr std::size_t kNear = 24;  // pool points per pass: ~5 mm on a 2 mm cloud
   const cloud::KdTree tree;
@@ -253,10 +254,12 @@ std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
       passed[k] = draw(rng, out[k], tries[k]);
     });
     pass += std::uint32_t(std::count(passed.begin() + done, passed.begin() + end, 1));
+    // Where uniform draws keep half of the first block, they go on alone (see Focus).
+    if (focus && done == 0 && 2 * pass >= end) focus.reset();
     if (focus) {
+      if (done == 0) focus_share = 1.0 - double(pass) / double(end);
       for (std::uint32_t k = done; k < end; ++k)
         if (passed[k]) focus->add(points[std::uint32_t(out[k].source)], pool);
-      if (done == 0) focus_share = 1.0 - double(pass) / double(end);
     }
     tried += std::accumulate(tries.begin() + done, tries.begin() + end, std::uint64_t(0));
     done = end;
