@@ -3,8 +3,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "objects.hpp"
 #include "uwgrasp/core/error.hpp"
@@ -57,11 +60,21 @@ TEST(GraspsJson, FieldsAsSpecifiedAndByteIdenticalAcrossThreadCounts) {
 
 namespace {
 // ctest runs each test in its own process, several at once: the process id keeps two tests
-// from writing the same file (GraspList.BadFieldsAreNamed read a neighbour's file once).
+// from writing the same file (GraspList.BadFieldsAreNamed read a neighbour's file once). The
+// files are removed when the process ends.
+struct TmpFiles {
+  std::vector<std::string> paths;
+  ~TmpFiles() {
+    std::error_code ignored;
+    for (const auto& p : paths) std::filesystem::remove(p, ignored);
+  }
+};
 std::string write_tmp(const std::string& name, const std::string& text) {
+  static TmpFiles written;
   const std::string path =
       (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string();
   std::ofstream(path) << text;
+  if (std::find(written.paths.begin(), written.paths.end(), path) == written.paths.end()) written.paths.push_back(path);
   return path;
 }
 std::string list_error(const std::string& text, const std::string& object = "") {
