@@ -48,11 +48,12 @@ struct Barbell {
     return {bvh, gripper, gripper, shape, frames, &shadow, occlusion, reach, scene};
   }
   std::vector<Candidate> antipodal(const std::function<bool(const Candidate&)>& clear, std::uint32_t count,
-                                   std::uint32_t enough = UINT32_MAX, SamplerConfig cfg = {}) const {
+                                   std::uint32_t enough = UINT32_MAX, SamplerConfig cfg = {},
+                                   std::vector<char>* passed = nullptr) const {
     const Box& palm = gripper.solids[int(Part::palm)];
     return sample_antipodal(model, model_normals, shape, cfg, frames.body_from_gripper.linear(),
                             max_grasp_width(gripper), -palm.hi.x(), palm.half().y(), palm.half().z(), 7,
-                            count, 0, clear, enough);
+                            count, 0, clear, enough, passed);
   }
 };
 
@@ -152,10 +153,7 @@ TEST(Gate, MoreTurnsPassMoreDraws) {
     SamplerConfig cfg;
     cfg.turns = turns;
     std::vector<char> passed;
-    const Box& palm = s.gripper.solids[int(Part::palm)];
-    const auto c = sample_antipodal(s.model, s.model_normals, s.shape, cfg, s.frames.body_from_gripper.linear(),
-                                    max_grasp_width(s.gripper), -palm.hi.x(), palm.half().y(), palm.half().z(),
-                                    7, 768, 0, passes, UINT32_MAX, &passed);
+    const auto c = s.antipodal(passes, 768, UINT32_MAX, cfg, &passed);
     ASSERT_EQ(passed.size(), c.size());
     for (std::size_t i = 0; i < c.size(); ++i) {
       if (!passed[i]) continue;
@@ -184,13 +182,10 @@ TEST(Gate, FocusDrawsNearThePassesWhereFewPlacesPass) {
   ASSERT_NE(first, some.end());
   const Eigen::Vector3f place = first->position;
   const auto passes = [&](const Candidate& c) { return (c.position - place).norm() < 0.03f && gate.passes(c); };
-  const Box& palm = s.gripper.solids[int(Part::palm)];
   const auto draw = [&](bool focus, std::vector<char>& passed) {
     SamplerConfig cfg;
     cfg.focus = focus;
-    return sample_antipodal(s.model, s.model_normals, s.shape, cfg, s.frames.body_from_gripper.linear(),
-                            max_grasp_width(s.gripper), -palm.hi.x(), palm.half().y(), palm.half().z(), 7,
-                            1024, 0, passes, UINT32_MAX, &passed);
+    return s.antipodal(passes, 1024, UINT32_MAX, cfg, &passed);
   };
   const auto share = [](const std::vector<char>& p) { return double(std::count(p.begin(), p.end(), 1)) / double(p.size()); };
   std::vector<char> uniform, focused, single;
