@@ -90,8 +90,10 @@ TEST(Feasibility, HierarchyMatchesBruteForceAndCountsAddUp) {
   const Gripper g = make_gripper({});
   SamplerConfig sc;
   const auto cand = sample_normal(pts, sc, Eigen::Matrix3d::Identity(), 3, 1500);
-  const auto checks = check_candidates(build_bvh(pts), g, cand);
+  const PointBvh bvh = build_bvh(pts);
+  const auto checks = check_candidates(bvh, g, cand);
   std::size_t feasible = 0;
+  std::vector<std::uint32_t> idx;
   for (std::size_t i = 0; i < cand.size(); ++i) {
     const Check b = check_brute(pts, g, cand[i]);
     const Check& h = checks[i];
@@ -107,7 +109,11 @@ TEST(Feasibility, HierarchyMatchesBruteForceAndCountsAddUp) {
     }
     ASSERT_EQ(h.reason, b.reason) << i;
     ASSERT_EQ(h.inliers, b.inliers) << i;
-    ASSERT_EQ(h.inliers, closing_points(pts, g, cand[i]).size()) << i;
+    // The hierarchy's closing region is the brute force's, as a set (its order is the walk's).
+    closing_indices(bvh, g, cand[i], idx);
+    std::sort(idx.begin(), idx.end());
+    ASSERT_EQ(idx, closing_points(pts, g, cand[i])) << i;
+    ASSERT_EQ(h.inliers, idx.size()) << i;
     if (h.inliers == 0) continue;
     ASSERT_EQ(h.nearest, b.nearest) << i;
     ASSERT_EQ(h.left, b.left) << i;

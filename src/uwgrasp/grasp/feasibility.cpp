@@ -245,8 +245,10 @@ void closing_indices(const PointBvh& bvh, const Gripper& g, const Candidate& c,
   const lanes::Frame4 to_gripper(c.rotation.transpose(), c.position);
   const LocalFrame f = local_frame(g, c, to_gripper);
   const Walker w{bvh, gl, f};
+  // In the hierarchy's order, not sorted: the order is fixed by the hierarchy and the
+  // candidate alone (so the same on any thread count), and sorting the ~10^3 indices of each of
+  // the ~2 x 1,500 predictions was half the score stage (40-47 -> 21-25 ms, simulated frames).
   w.collect(bvh.top(), 0, out);
-  std::sort(out.begin(), out.end());
 }
 
 }  // namespace uwgrasp::grasp

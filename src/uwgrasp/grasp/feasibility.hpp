@@ -80,7 +80,7 @@ std::vector<std::uint32_t> closing_points(std::span<const Eigen::Vector3f> point
                                           const Gripper& g, const Candidate& c);
 
 // The same through the hierarchy: the cloud indices of the points in the candidate's closing
-// region, ascending, in `out`.
+// region, in `out`, in the hierarchy's (deterministic, not ascending) order.
 void closing_indices(const PointBvh& bvh, const Gripper& g, const Candidate& c,
                      std::vector<std::uint32_t>& out);
 
