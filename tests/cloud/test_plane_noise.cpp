@@ -1,8 +1,10 @@
 // The depth noise measured on the seafloor (plane_noise.hpp) against floors of known noise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <vector>
 
 #include "shapes.hpp"
@@ -132,5 +134,57 @@ TEST(Organised, PlaneRemovalWithNormalsKeepsAnObjectsFoot) {
   EXPECT_LT(without, 0.45);
   // The floor itself stays removed: its normals agree with the plane's.
   EXPECT_LT(double(floor_kept[1]), 1.5 * double(floor_kept[0]) + 100.0);
+}
+}  // namespace uwgrasp::cloud
+
+namespace uwgrasp::cloud {
+namespace {
+// The law as first written: a std::map of per-bin lists, std::nth_element for each median.
+NoiseModel plane_noise_reference(const Cloud& cloud, const Eigen::Vector4f& plane, float band, double bin) {
+  std::map<long, std::vector<double>> bins;
+  for (const Eigen::Vector3f& p : cloud.points) {
+    const double dist = std::abs(double(plane.head<3>().dot(p) + plane[3]));
+    if (dist <= band) bins[std::lround(std::floor((p - cloud.viewpoint).norm() / bin))].push_back(dist);
+  }
+  Eigen::Matrix2d a = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+  NoiseModel m;
+  for (auto& [key, v] : bins) {
+    if (v.size() < 200) continue;
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    const double r = (double(key) + 0.5) * bin, sigma = 1.4826 * v[v.size() / 2];
+    const Eigen::Vector2d x(1.0, r * r);
+    a += x * x.transpose(), b += x * sigma, ++m.bins;
+  }
+  if (m.bins < 2 || std::abs(a.determinant()) < 1e-12) return m;
+  const Eigen::Vector2d s = a.ldlt().solve(b);
+  m.found = true, m.sigma0 = std::max(0.0, s[0]), m.sigma_k = std::max(0.0, s[1]);
+  return m;
+}
+}  // namespace
+
+// The bucketed medians and per-bin lists give the reference's law to the bit, on floors of
+// several noises, bands and bin sizes (ties and even-sized bins included: a quantised floor).
+TEST(PlaneNoise, SameLawAsTheReferenceImplementation) {
+  for (const auto& [s0, sk] : {std::pair{0.001, 0.0}, {0.0012, 0.0019}, {0.006, 0.001}}) {
+    Cloud c = noisy_floor(s0, sk, 5);
+    for (const float band : {0.005f, 0.03f, 0.1f})
+      for (const double bin : {0.1, 0.25}) {
+        const NoiseModel a = plane_noise(c, kFloor, band, bin), b = plane_noise_reference(c, kFloor, band, bin);
+        ASSERT_EQ(a.found, b.found) << s0 << " " << band;
+        EXPECT_EQ(a.bins, b.bins);
+        EXPECT_EQ(a.sigma0, b.sigma0) << s0 << " band " << band << " bin " << bin;
+        EXPECT_EQ(a.sigma_k, b.sigma_k) << s0 << " band " << band << " bin " << bin;
+      }
+    for (auto& p : c.points) p.y() = std::round(p.y() * 1000.0f) / 1000.0f;  // millimetre steps: ties
+    const NoiseModel a = plane_noise(c, kFloor, 0.03f), b = plane_noise_reference(c, kFloor, 0.03f, 0.25);
+    EXPECT_EQ(a.sigma0, b.sigma0);
+    EXPECT_EQ(a.sigma_k, b.sigma_k);
+  }
+  Cloud far = noisy_floor(0.001, 0.0, 2);  // a point a kilometre away: bins by key, not by index
+  far.points.emplace_back(0.0f, 1.0f, 1000.0f);
+  const NoiseModel a = plane_noise(far, kFloor, 0.03f), b = plane_noise_reference(far, kFloor, 0.03f, 0.25);
+  EXPECT_EQ(a.sigma0, b.sigma0);
+  EXPECT_EQ(a.sigma_k, b.sigma_k);
 }
 }  // namespace uwgrasp::cloud

@@ -4,9 +4,11 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "objects.hpp"
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/core/rng.hpp"
 #include "uwgrasp/grasp/frames.hpp"
 #include "uwgrasp/grasp/gate.hpp"
 #include "uwgrasp/grasp/samplers.hpp"
@@ -51,9 +53,11 @@ struct Barbell {
                                    std::uint32_t enough = UINT32_MAX, SamplerConfig cfg = {},
                                    std::vector<char>* passed = nullptr) const {
     const Box& palm = gripper.solids[int(Part::palm)];
+    ClearFn by_slot;
+    if (clear) by_slot = [&](const Candidate& c, std::uint32_t) { return clear(c); };
     return sample_antipodal(model, model_normals, shape, cfg, frames.body_from_gripper.linear(),
                             max_grasp_width(gripper), -palm.hi.x(), palm.half().y(), palm.half().z(), 7,
-                            count, 0, clear, enough, passed);
+                            count, 0, by_slot, enough, passed);
   }
 };
 
@@ -105,6 +109,65 @@ TEST(Gate, PassesIsTheCheckThenTheRest) {
   EXPECT_GT(passed, 0u);
   EXPECT_GT(why[std::size_t(Reject::hull_collision)], 0u);  // the seafloor and the scene took part
   EXPECT_GT(why[std::size_t(Reject::collision_palm)], 0u);
+}
+
+// The shape's cell lookup (truncation after a float bounds test) is the floor of cell_of's
+// coordinates, bounds-tested as integers: points in, around and far outside the grid, on cell
+// boundaries, and NaN.
+TEST(Gate, ShapeLookupIsTheFloorOfItsCell) {
+  const Barbell s;
+  const ObjectShape& g = s.shape;
+  ASSERT_FALSE(g.empty());
+  const auto reference = [&](const Eigen::Vector3f& p) {
+    const Eigen::Vector3i c = g.cell_of(p);
+    if ((c.array() < 0).any() || c.x() >= g.nx || c.y() >= g.ny || c.z() >= g.nz) return Occupancy::free;
+    return g.cells[(std::size_t(c.z()) * std::size_t(g.ny) + std::size_t(c.y())) * std::size_t(g.nx) + std::size_t(c.x())];
+  };
+  Rng rng(4);
+  const Eigen::Vector3f size = g.voxel * Eigen::Vector3f(float(g.nx), float(g.ny), float(g.nz));
+  std::size_t occupied = 0;
+  for (int i = 0; i < 200000; ++i) {
+    Eigen::Vector3f p = g.origin + Eigen::Vector3f(float(rng.uniform() * 1.2 - 0.1), float(rng.uniform() * 1.2 - 0.1),
+                                                   float(rng.uniform() * 1.2 - 0.1)).cwiseProduct(size);
+    if (i % 4 == 0)  // on a boundary between cells
+      p = g.origin + g.voxel * (Eigen::Vector3f(float(std::floor(rng.uniform() * g.nx)), float(std::floor(rng.uniform() * g.ny)),
+                                                float(std::floor(rng.uniform() * g.nz))) - Eigen::Vector3f::Constant(0.5f));
+    ASSERT_EQ(g.at(p), reference(p)) << p.transpose();
+    occupied += g.occupied(p);
+  }
+  EXPECT_GT(occupied, 1000u);
+  EXPECT_EQ(g.at(Eigen::Vector3f::Constant(NAN)), Occupancy::free);
+  EXPECT_EQ(g.at(Eigen::Vector3f::Constant(1e30f)), Occupancy::free);
+  EXPECT_EQ(g.at(Eigen::Vector3f::Constant(-1e30f)), Occupancy::free);
+}
+
+// The gate keeps the gripper check of a candidate that passes (the detector does not check it
+// again): the batch check's, field by field; a candidate that fails leaves the given check as it was.
+TEST(Gate, KeepsTheCheckOfWhatPasses) {
+  const Barbell s;
+  const Gate gate(s.inputs());
+  const auto c = s.antipodal({}, 600);
+  const std::vector<Check> batch = check_candidates(s.bvh, s.gripper, c);
+  std::size_t passed = 0, failed = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    Check k;
+    k.inliers = 12345;  // a marker: left alone unless the candidate passes
+    if (!gate.passes(c[i], &k)) {
+      EXPECT_EQ(k.inliers, 12345u) << i;
+      ++failed;
+      continue;
+    }
+    ++passed;
+    ASSERT_TRUE(batch[i].feasible()) << i;
+    EXPECT_EQ(k.reason, batch[i].reason);
+    EXPECT_EQ(k.inliers, batch[i].inliers) << i;
+    EXPECT_EQ(k.nearest, batch[i].nearest);
+    EXPECT_EQ(k.left, batch[i].left);
+    EXPECT_EQ(k.right, batch[i].right);
+    EXPECT_EQ(k.width, batch[i].width);
+  }
+  EXPECT_GT(passed, 20u);
+  EXPECT_GT(failed, 20u);
 }
 
 // The thesis's future work (9.3): a sampler whose candidates are mostly feasible. Drawn on the

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "uwgrasp/cloud/indices.hpp"
 #include "uwgrasp/core/rng.hpp"
 
 namespace uwgrasp::cloud {
@@ -56,12 +57,7 @@ bool hypothesis(const Cloud& in, std::uint64_t seed, std::uint32_t i, Eigen::Vec
 }
 
 std::vector<std::uint32_t> select_inliers(const Cloud& in, const Eigen::Vector4f& m, float tol) {
-  std::vector<std::uint32_t> idx;
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    const auto& p = in.points[i];
-    if (std::abs(m.head<3>().dot(p) + m[3]) <= tol) idx.push_back(static_cast<std::uint32_t>(i));
-  }
-  return idx;
+  return indices_where(in.size(), [&](std::size_t i) { return std::abs(m.head<3>().dot(in.points[i]) + m[3]) <= tol; });
 }
 }  // namespace
 

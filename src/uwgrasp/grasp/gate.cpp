@@ -24,12 +24,15 @@ Reject Gate::after_check(const Candidate& c) const {
   return in_.reach.enabled ? reach_check(obstacles_, solids_, c, in_.reach) : Reject::none;
 }
 
-bool Gate::passes(const Candidate& c) const {
+bool Gate::passes(const Candidate& c, Check* check) const {
   // A few voxel lookups and the hull's corners against the seafloor first: most failing draws
   // stop there, before any walk of a point hierarchy.
   if (part_inside(in_.shape, in_.checked, c) >= 0) return false;
   if (in_.reach.enabled && reach_plane_check(obstacles_, solids_, c, in_.reach) != Reject::none) return false;
-  return check_(c).feasible() && after_check(c) == Reject::none;
+  const Check k = check_(c);
+  if (!k.feasible() || after_check(c) != Reject::none) return false;
+  if (check) *check = k;
+  return true;
 }
 
 }  // namespace uwgrasp::grasp

@@ -42,8 +42,9 @@ class Gate {
   // Why a candidate that passed the gripper check fails the rest, in the detector's order
   // (inside the shape, occluded, unreachable); Reject::none when it passes.
   Reject after_check(const Candidate& c) const;
-  // Whether it passes every check, the gripper's included; the cheapest first.
-  bool passes(const Candidate& c) const;
+  // Whether it passes every check, the gripper's included; the cheapest first. When it does and
+  // `check` is given, the gripper's check (closing region, contacts, width) is stored there.
+  bool passes(const Candidate& c, Check* check = nullptr) const;
 
  private:
   GateInputs in_;

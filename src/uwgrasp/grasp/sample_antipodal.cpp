@@ -108,10 +108,10 @@ struct Draw {
   const std::vector<std::uint32_t>& eligible;
   const std::vector<std::uint32_t>& focus;  // eligible points near earlier blocks' passes
   const double& focus_share;                 // the share of draws that start from them
-  const std::function<bool(const Candidate&)>& clear;
+  const ClearFn& clear;
 
-  // `tries` counts the calls of `clear`.
-  bool operator()(Rng& rng, Candidate& c, std::uint32_t& tries) const {
+  // `tries` counts the calls of `clear`; `slot` is the candidate's index in the output.
+  bool operator()(Rng& rng, Candidate& c, std::uint32_t slot, std::uint32_t& tries) const {
     const float gap = 2.0f * shape.voxel;
     bool passed = false;
     const int draws = 8;
@@ -125,7 +125,7 @@ struct Draw {
       const float width = extent_along(shape, points[j], y, max_width, gap);
       const V3 x = approach(rng, y);
       if (x.isZero()) continue;
-      passed = turn(points[j] + 0.5f * width * y, x, y, j, c, tries);
+      passed = turn(points[j] + 0.5f * width * y, x, y, j, c, slot, tries);
       if (clear ? passed : width <= max_width) break;
     }
     return passed;
@@ -151,7 +151,7 @@ struct Draw {
   // (nearest first, none from below), the first that passes `clear` (without one: whose palm
   // clears the model within half a finger's back-off); else the one that backs off least. Backed
   // off along its approach until the palm clears.
-  bool turn(const V3& mid, const V3& x, const V3& y, std::uint32_t j, Candidate& c,
+  bool turn(const V3& mid, const V3& x, const V3& y, std::uint32_t j, Candidate& c, std::uint32_t slot,
             std::uint32_t& tries) const {
     float best_off = std::numeric_limits<float>::max();
     const int turns = int(cfg.turns);
@@ -161,7 +161,7 @@ struct Draw {
       if (xt.z() < -0.34f) continue;
       const float off = back_off(shape, mid, xt, y, palm_offset, palm_half_width, palm_half_height);
       const Candidate k = oriented(mid - off * xt, xt, y, j);
-      const bool passed = clear ? (++tries, bool(clear(k))) : off <= 0.5f * palm_offset;
+      const bool passed = clear ? (++tries, bool(clear(k, slot))) : off <= 0.5f * palm_offset;
       if (passed || off < best_off) best_off = off, c = k;
       if (passed) return true;
     }
@@ -223,7 +223,7 @@ std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
                                         float palm_offset, float palm_half_width,
                                         float palm_half_height, std::uint64_t seed,
                                         std::uint32_t count, std::uint32_t first,
-                                        const std::function<bool(const Candidate&)>& clear,
+                                        const ClearFn& clear,
                                         std::uint32_t enough, std::vector<char>* passed_out) {
   if (points.empty()) throw Error("antipodal sampler: the object cloud is empty");
   if (normals.size() != points.size()) throw Error("antipodal sampler: the object has no normals");
@@ -251,7 +251,7 @@ std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
     const std::uint32_t end = std::min(count, done + kBlock);
     tbb::parallel_for(done, end, [&](std::uint32_t k) {
       Rng rng(seed, kAntipodal + first + k);
-      passed[k] = draw(rng, out[k], tries[k]);
+      passed[k] = draw(rng, out[k], k, tries[k]);
     });
     pass += std::uint32_t(std::count(passed.begin() + done, passed.begin() + end, 1));
     // Where uniform draws keep half of the first block, they go on alone (see Focus).

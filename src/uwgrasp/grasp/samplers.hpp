@@ -90,7 +90,9 @@ struct ObjectShape;  // shape.hpp
 // (fewer than `count` are then returned). With `clear` and cfg.focus, later blocks draw part of
 // their points near those of the candidates that passed (SamplerConfig::focus). With `passed`,
 // it is set to whether each returned candidate passed `clear` (the detector then need not check
-// those again).
+// those again). `clear` is also told the slot of the candidate it is asked about (its index in
+// the returned list), so that it can keep what it learnt for the one that passes.
+using ClearFn = std::function<bool(const Candidate&, std::uint32_t slot)>;
 std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
                                         std::span<const Eigen::Vector3f> normals,
                                         const ObjectShape& shape, const SamplerConfig& cfg,
@@ -98,7 +100,7 @@ std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
                                         float palm_offset, float palm_half_width,
                                         float palm_half_height, std::uint64_t seed,
                                         std::uint32_t count, std::uint32_t first = 0,
-                                        const std::function<bool(const Candidate&)>& clear = {},
+                                        const ClearFn& clear = {},
                                         std::uint32_t enough = UINT32_MAX,
                                         std::vector<char>* passed = nullptr);
 

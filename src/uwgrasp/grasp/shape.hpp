@@ -72,12 +72,21 @@ struct ObjectShape {
     const Eigen::Vector3f q = (p_level - origin) / voxel + Eigen::Vector3f::Constant(0.5f);
     return {int(std::floor(q.x())), int(std::floor(q.y())), int(std::floor(q.z()))};
   }
+  // The index of the cell p_level falls in, -1 outside the grid (or NaN). The same cell as
+  // cell_of: floor(q) lies in [0, n) exactly when q does, and there truncation is floor;
+  // without SSE4.1 a floor is a dozen instructions (9 % of a whole detect's time).
+  std::ptrdiff_t index_of(const Eigen::Vector3f& p_level) const {
+    const Eigen::Vector3f q = (p_level - origin) / voxel + Eigen::Vector3f::Constant(0.5f);
+    if (!(q.x() >= 0.0f && q.y() >= 0.0f && q.z() >= 0.0f && q.x() < float(nx) && q.y() < float(ny) &&
+          q.z() < float(nz)))
+      return -1;
+    return std::ptrdiff_t((std::size_t(q.z()) * std::size_t(ny) + std::size_t(q.y())) * std::size_t(nx) +
+                          std::size_t(q.x()));
+  }
   // Free outside the grid. Inline: the samplers and checks ask millions of times a frame.
   Occupancy at(const Eigen::Vector3f& p_level) const {
-    if (cells.empty()) return Occupancy::free;
-    const Eigen::Vector3i c = cell_of(p_level);
-    if ((c.array() < 0).any() || c.x() >= nx || c.y() >= ny || c.z() >= nz) return Occupancy::free;
-    return cells[(std::size_t(c.z()) * std::size_t(ny) + std::size_t(c.y())) * std::size_t(nx) + std::size_t(c.x())];
+    const std::ptrdiff_t i = cells.empty() ? -1 : index_of(p_level);
+    return i < 0 ? Occupancy::free : cells[std::size_t(i)];
   }
   bool occupied(const Eigen::Vector3f& p_level) const { return at(p_level) != Occupancy::free; }
   std::size_t count(Occupancy o) const;
