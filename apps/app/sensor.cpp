@@ -5,31 +5,19 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgcodecs.hpp>  // the IMREAD_ flags only: reading is viz::read_image's
 #include <opencv2/imgproc.hpp>
 
 #include "uwgrasp/camera/files.hpp"
 #include "uwgrasp/camera/rgbd.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/scene_yaml.hpp"
+#include "uwgrasp/viz/image_files.hpp"
 #include "uwgrasp/viz/picture.hpp"
 
 namespace uwgrasp::app {
 
 namespace {
-cv::Mat read_any(const std::string& path, int flags) {
-  if (!std::filesystem::is_regular_file(path)) throw Error(path + ": no such file");
-  cv::Mat m;
-  try {
-    m = cv::imread(path, flags);
-  } catch (const cv::Exception&) {
-    m.release();
-  }
-  if (m.empty())
-    throw Error(path + ": cannot read the image (not an image OpenCV reads, or truncated)");
-  return m;
-}
-
 std::string rig_summary(const camera::Rectification& r, bool port) {
   char line[256];
   std::snprintf(line, sizeof line,
@@ -58,7 +46,7 @@ void add_sensor_options(CLI::App& cmd, SensorOptions& o) {
 }
 
 cv::Mat read_image(const std::string& path) {
-  cv::Mat m = read_any(path, cv::IMREAD_UNCHANGED);
+  cv::Mat m = viz::read_image(path, cv::IMREAD_UNCHANGED);
   if (m.depth() != CV_8U) throw Error(path + ": the stereo matcher takes 8-bit images");
   if (m.channels() == 4) cv::cvtColor(m, m, cv::COLOR_BGRA2BGR);
   if (m.channels() != 1 && m.channels() != 3)
@@ -67,7 +55,7 @@ cv::Mat read_image(const std::string& path) {
 }
 
 cv::Mat read_depth(const std::string& path) {
-  cv::Mat m = read_any(path, cv::IMREAD_ANYDEPTH);
+  cv::Mat m = viz::read_image(path, cv::IMREAD_ANYDEPTH);
   if (m.type() != CV_16UC1 && m.type() != CV_32FC1)
     throw Error(path + ": depth must be one channel of 16-bit millimetres or 32-bit float metres");
   return m;

@@ -2,7 +2,7 @@
 // calibration (thesis 3.1) of one camera (ROS camera_info YAML out) or a stereo rig (uwgrasp's
 // stereo file out), with the RMS reprojection error of every image and overall.
 #include <cstdio>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgcodecs.hpp>  // the IMREAD_ flags only: reading is viz::read_image's
 
 #include "app/common.hpp"
 #include "commands.hpp"
@@ -10,6 +10,7 @@
 #include "uwgrasp/camera/files.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/atomic_file.hpp"
+#include "uwgrasp/viz/image_files.hpp"
 
 namespace uwgrasp::app {
 
@@ -39,9 +40,7 @@ camera::Board parse_board(const std::string& text) {
 std::vector<camera::View> load(const std::vector<std::string>& paths) {
   std::vector<camera::View> views;
   for (const auto& p : paths) {
-    camera::View v{p, cv::imread(p, cv::IMREAD_GRAYSCALE)};
-    if (v.image.empty()) throw Error(p + ": cannot read the image");
-    views.push_back(std::move(v));
+    views.push_back({p, viz::read_image(p, cv::IMREAD_GRAYSCALE)});
   }
   return views;
 }

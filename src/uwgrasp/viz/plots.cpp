@@ -1,11 +1,11 @@
 // Plots and image conversion for PNG output.
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
 
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/viz/image_files.hpp"
 #include "uwgrasp/viz/picture.hpp"
 #include "uwgrasp/viz/plot_text.hpp"
 
@@ -82,11 +82,7 @@ cv::Mat grid(std::span<const cv::Mat> tiles, int columns) {
   return out;
 }
 
-std::vector<std::uint8_t> encode_png(const cv::Mat& image) {
-  std::vector<std::uint8_t> out;
-  if (image.empty() || !cv::imencode(".png", image, out)) throw Error("cannot encode a PNG image");
-  return out;
-}
+std::vector<std::uint8_t> encode_png(const cv::Mat& image) { return encode_image(image, ".png"); }
 
 cv::Mat rgb_image(std::span<const Rgb8> rgb, int width, int height) {
   cv::Mat img(height, width, CV_8UC3);
