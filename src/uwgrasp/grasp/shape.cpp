@@ -1,5 +1,7 @@
 #include "uwgrasp/grasp/shape.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -92,7 +94,8 @@ template <class Shadow>
 void fill_unseen(Grid g, std::span<const V3> camera, const std::vector<int>& top, const Frames& frames,
                  const std::optional<FloorPlane>& floor, const ShapeConfig& cfg, Shadow in_shadow) {
   ObjectShape& s = g.s;
-  for (int j = 0; j < s.ny; ++j)
+  // Columns in parallel: each writes its own cells.
+  tbb::parallel_for(0, s.ny, [&](int j) {
     for (int i = 0; i < s.nx; ++i) {
       const V3 base = g.centre(i, j, 0);
       const auto fz = floor_z(floor, base.x(), base.y());
@@ -102,6 +105,7 @@ void fill_unseen(Grid g, std::span<const V3> camera, const std::vector<int>& top
         if (s.cells[g.index(i, j, k)] == Occupancy::free && in_shadow(g.centre(i, j, k)))
           s.cells[g.index(i, j, k)] = Occupancy::assumed;
     }
+  });
   const int steps = int(std::ceil(cfg.min_thickness / s.voxel));
   for (const V3& c : camera) {
     const V3 u = c.normalized();
@@ -155,8 +159,11 @@ V3 away_from_mass(Grid g, int i, int j, int k, Outside outside) {
 template <class Part, class Outside>
 void shell(Grid g, Part part, Outside outside, bool mirrored_surface, std::vector<V3>& points,
            std::vector<V3>& normals) {
-  ObjectShape& s = g.s;
-  for (int k = 0; k < s.nz; ++k)
+  const ObjectShape& s = g.s;
+  // Slabs of constant k in parallel, each into its own lists, joined in k order: the same
+  // points in the same order as one sweep.
+  std::vector<std::vector<V3>> slab_points(std::size_t(s.nz)), slab_normals(std::size_t(s.nz));
+  tbb::parallel_for(0, s.nz, [&](int k) {
     for (int j = 0; j < s.ny; ++j)
       for (int i = 0; i < s.nx; ++i) {
         const Occupancy o = s.cells[g.index(i, j, k)];
@@ -167,9 +174,14 @@ void shell(Grid g, Part part, Outside outside, bool mirrored_surface, std::vecto
         if (!boundary || (mirrored_surface && by_mirrored(g, i, j, k))) continue;
         const V3 n = away_from_mass(g, i, j, k, outside);
         if (n.norm() < 1e-3f) continue;  // no side faces away from the mass: not a surface
-        points.push_back(g.centre(i, j, k));
-        normals.push_back(n.normalized());
+        slab_points[std::size_t(k)].push_back(g.centre(i, j, k));
+        slab_normals[std::size_t(k)].push_back(n.normalized());
       }
+  });
+  for (std::size_t k = 0; k < slab_points.size(); ++k) {
+    points.insert(points.end(), slab_points[k].begin(), slab_points[k].end());
+    normals.insert(normals.end(), slab_normals[k].begin(), slab_normals[k].end());
+  }
 }
 }  // namespace
 
@@ -220,16 +232,15 @@ float surface_noise(std::span<const Eigen::Vector3f> points, std::size_t k, std:
   if (points.size() <= k) return 0.0f;
   const cloud::KdTree tree(points);
   const std::size_t step = std::max<std::size_t>(1, points.size() / samples);
-  std::vector<float> rms;
-  std::vector<std::uint32_t> idx(k);
-  std::vector<float> d2(k);
-  for (std::size_t i = 0; i < points.size(); i += step) {
-    idx.resize(tree.knn(points[i], k, idx.data(), d2.data()));
+  std::vector<float> rms((points.size() + step - 1) / step);
+  tbb::parallel_for(std::size_t(0), rms.size(), [&](std::size_t s) {
+    std::vector<std::uint32_t> idx(k);
+    std::vector<float> d2(k);
+    idx.resize(tree.knn(points[s * step], k, idx.data(), d2.data()));
     const MeanCovariance mc = mean_covariance(points, idx);
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(mc.cov, Eigen::EigenvaluesOnly);
-    rms.push_back(float(std::sqrt(std::max(0.0, es.eigenvalues()[0]))));
-    idx.resize(k);
-  }
+    rms[s] = float(std::sqrt(std::max(0.0, es.eigenvalues()[0])));
+  });
   std::nth_element(rms.begin(), rms.begin() + std::ptrdiff_t(rms.size() / 2), rms.end());
   return rms[rms.size() / 2];
 }

@@ -80,19 +80,22 @@ struct Search {
     return best_offset(coarse_sample, n, view, lo, hi + reach, cfg.offset_step, tolerance, cfg);
   }
   // Finer normals and offsets around a coarse plane.
+  // The normals are scored in parallel, then taken in their order (the first of equal scores).
   Scored refine(const Scored& c, float azimuth, float tilt, float tilt_step) const {
-    Scored best;
     const float da = 0.25f * cfg.angle_step, dt = 0.25f * tilt_step, dd = 0.25f * cfg.offset_step;
-    const int tilt_steps = dt > 0.0f ? 3 : 0;
-    for (int i = -3; i <= 3; ++i)
-      for (int j = -tilt_steps; j <= tilt_steps; ++j) {
-        const float tl = std::clamp(tilt + float(j) * dt, -cfg.max_tilt, cfg.max_tilt);
-        const V3 n = direction(azimuth + float(i) * da, tl);
-        // The same plane turned about the point of it nearest the sample's centroid.
-        const float d0 = n.dot(c.plane.mirror(centroid) + (c.plane.normal.dot(centroid) - c.plane.offset) * c.plane.normal);
-        const Scored s = best_offset(sample, n, view, d0 - 4.0f * dd, d0 + 4.0f * dd, dd, tolerance, cfg);
-        if (s.valid && (!best.valid || s.plane.score > best.plane.score)) best = s;
-      }
+    const int tilt_steps = dt > 0.0f ? 3 : 0, columns = 2 * tilt_steps + 1;
+    std::vector<Scored> tried(std::size_t(7 * columns));
+    tbb::parallel_for(std::size_t(0), tried.size(), [&](std::size_t k) {
+      const int i = int(k) / columns - 3, j = int(k) % columns - tilt_steps;
+      const float tl = std::clamp(tilt + float(j) * dt, -cfg.max_tilt, cfg.max_tilt);
+      const V3 n = direction(azimuth + float(i) * da, tl);
+      // The same plane turned about the point of it nearest the sample's centroid.
+      const float d0 = n.dot(c.plane.mirror(centroid) + (c.plane.normal.dot(centroid) - c.plane.offset) * c.plane.normal);
+      tried[k] = best_offset(sample, n, view, d0 - 4.0f * dd, d0 + 4.0f * dd, dd, tolerance, cfg);
+    });
+    Scored best;
+    for (const Scored& s : tried)
+      if (s.valid && (!best.valid || s.plane.score > best.plane.score)) best = s;
     return best;
   }
 };
