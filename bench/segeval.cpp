@@ -1,13 +1,17 @@
 // bench/segeval: per-object best-segment IoU against the mOSD ground-truth labels
 // (label >= 20: one id per object), for uwgrasp's organised and k-d tree paths, for PCL's
 // RegionGrowing run with the same parameters on the same preprocessed cloud (same normals, plane
-// removed), and for PCL's organised chain on the raw frame.
+// removed), and for PCL's organised chain on the raw frame. Then how far the two paths' normals
+// agree on the points both keep, away from depth edges, on the same frames and the real stereo
+// mug frame.
 //   segeval [--set section.key=value]...
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/region_growing.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -83,6 +87,49 @@ struct Tally {
     mean /= double(ious.size());
   }
 };
+
+// Whether pixel i's window of `half` pixels lies wholly in the frame, every pixel finite and
+// range-continuous with it as the organised path defines it (2 % of the range per pixel step).
+bool away_from_edges(const Cloud& in, std::size_t i, int half, float change) {
+  const int w = int(in.width), h = int(in.height), u = int(i % in.width), v = int(i / in.width);
+  if (u < half || v < half || u + half >= w || v + half >= h || !is_finite(in.points[i])) return false;
+  const float r = in.points[i].norm();
+  for (int dv = -half; dv <= half; ++dv)
+    for (int du = -half; du <= half; ++du) {
+      const Eigen::Vector3f& q = in.points[std::size_t((v + dv) * w + u + du)];
+      const float ring = float(std::max(std::abs(du), std::abs(dv)));
+      if (!is_finite(q) || std::abs(q.norm() - r) > change * ring * r) return false;
+    }
+  return true;
+}
+
+// The share of pixels (both paths keep the point and give it a normal, away from depth edges
+// over the organised normal window) whose two normals lie within `deg` of each other (as
+// lines: a flipped sign is the same normal), and the median angle.
+struct Agreement {
+  std::size_t points = 0;
+  double share = 0, median_deg = 0;
+};
+Agreement normals_agree(const Cloud& in, const segment::Scene& a, const segment::Scene& b,
+                        const cloud::OrganisedConfig& org, double deg) {
+  std::vector<double> angles;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const auto ia = a.pre.output_of_input[i], ib = b.pre.output_of_input[i];
+    if (ia < 0 || ib < 0 || !away_from_edges(in, i, int(org.normal_half_window), org.depth_change)) continue;
+    const Eigen::Vector3f na = a.pre.cloud.normals[std::size_t(ia)], nb = b.pre.cloud.normals[std::size_t(ib)];
+    if (!is_finite(na) || !is_finite(nb)) continue;
+    angles.push_back(std::acos(std::min(1.0, double(std::abs(na.normalized().dot(nb.normalized()))))) * 180.0 / M_PI);
+  }
+  Agreement out;
+  out.points = angles.size();
+  if (angles.empty()) return out;
+  std::size_t within = 0;
+  for (const double x : angles) within += x <= deg;
+  out.share = double(within) / double(angles.size());
+  std::nth_element(angles.begin(), angles.begin() + std::ptrdiff_t(angles.size() / 2), angles.end());
+  out.median_deg = angles[angles.size() / 2];
+  return out;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -128,6 +175,17 @@ int main(int argc, char** argv) {
   std::printf("| all | %zu |", n);
   for (const auto& t : tally)
     std::printf(" %.3f (%.0f %%) |", t.sum / double(n), 100.0 * double(t.good) / double(n));
-  std::printf("\n");
+  std::printf("\n\nNormals of the organised path against the k-d tree path's, on the points both keep, away from "
+              "depth edges (the organised normal window wholly in the frame and range-continuous):\n\n");
+  std::printf("| frame | points compared | within 5 deg | median angle deg |\n|---|---|---|---|\n");
+  for (const char* name : {"mOSD_learn0", "mOSD_learn17", "mOSD_learn25", "mOSD_learn33", "table_scene_mug_stereo_textured"}) {
+    const std::string path = dir + name + ".pcd";
+    if (!std::filesystem::exists(path)) continue;
+    const Cloud in = io::load_cloud(path);
+    const segment::Scene s = segment::segment_scene(in, cfg.preprocess, cfg.segment, cfg.seed);
+    const segment::Scene kd = segment::segment_scene(in, kd_cfg.preprocess, kd_cfg.segment, cfg.seed);
+    const Agreement g = normals_agree(in, s, kd, cfg.preprocess.organised, 5.0);
+    std::printf("| %s | %zu | %.1f %% | %.2f |\n", name, g.points, 100.0 * g.share, g.median_deg);
+  }
   return 0;
 }
