@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -123,6 +124,45 @@ TEST(Symmetry, ClassifiesAgainstWhatTheCameraSaw) {
   EXPECT_EQ(classify(s.view(), V3(0.7f, 0.2f, kFloor + 0.02f), 0.003f), Seen::violation);
   // Beside the can, above the visible seafloor: free space the camera saw through.
   EXPECT_EQ(classify(s.view(), V3(0.7f, 0.15f, kFloor - 0.05f), 0.003f), Seen::violation);
+}
+
+// The view's bins and the surface cells without a floor call are the floor's: random values,
+// every bin boundary near zero, values past the clamp; points in and around the cells, and NaN.
+TEST(Symmetry, BinsAndCellsAreTheFloorsOfTheirCoordinates) {
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<float> wide(-3.0f, 3.0f);
+  const float inverse = 1.0f / 0.003f;
+  const auto reference = [](float v, float inv) { return int(std::floor(std::clamp(v * inv, -1e8f, 1e8f))); };
+  for (int i = 0; i < 200000; ++i) {
+    const float v = wide(gen);
+    ASSERT_EQ(sight_detail::bin_of(v, inverse), reference(v, inverse)) << v;
+  }
+  for (int b = -2000; b <= 2000; ++b)
+    for (const float v : {float(b) * 0.003f, std::nextafter(float(b) * 0.003f, -1.0f), std::nextafter(float(b) * 0.003f, 1.0f)})
+      ASSERT_EQ(sight_detail::bin_of(v, inverse), reference(v, inverse)) << v;
+  for (const float v : {1e12f, -1e12f, 0.0f, -0.0f, 1e-30f, -1e-30f, 16777217.0f * 0.003f, -16777217.0f * 0.003f})
+    EXPECT_EQ(sight_detail::bin_of(v, inverse), reference(v, inverse)) << v;
+
+  const Sighted seen = visible(can(V3(0.7f, 0.0f, kFloor), 0.03f, 0.1f));
+  const Sight sight = sight_of(seen);
+  const SurfaceCells& cells = sight.view().surface;
+  ASSERT_FALSE(cells.marked.empty());
+  const auto contains = [&](const V3& p) {
+    const V3 q = (p - cells.origin) / cells.cell;
+    const int i = int(std::floor(q.x())), j = int(std::floor(q.y())), k = int(std::floor(q.z()));
+    if (i < 0 || j < 0 || k < 0 || i >= cells.nx || j >= cells.ny || k >= cells.nz) return false;
+    return cells.marked[(std::size_t(k) * std::size_t(cells.ny) + std::size_t(j)) * std::size_t(cells.nx) + std::size_t(i)] != 0;
+  };
+  const V3 size = cells.cell * V3(float(cells.nx), float(cells.ny), float(cells.nz));
+  std::uniform_real_distribution<float> unit(-0.1f, 1.1f);
+  std::size_t inside = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const V3 p = cells.origin + V3(unit(gen), unit(gen), unit(gen)).cwiseProduct(size);
+    ASSERT_EQ(cells.contains(p), contains(p)) << p.transpose();
+    inside += contains(p);
+  }
+  EXPECT_GT(inside, 100u);
+  EXPECT_FALSE(cells.contains(V3::Constant(std::nanf(""))));
 }
 
 TEST(Symmetry, AnUprightCanIsMirroredAboutAPlaneThroughItsAxis) {

@@ -39,9 +39,10 @@ SurfaceCells make_surface_cells(std::span<const V3> object, float cell) {
 bool SurfaceCells::contains(const Eigen::Vector3f& p) const {
   if (marked.empty()) return false;
   const V3 q = (p - origin) / cell;
-  const int i = int(std::floor(q.x())), j = int(std::floor(q.y())), k = int(std::floor(q.z()));
-  if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz) return false;
-  return marked[(std::size_t(k) * std::size_t(ny) + std::size_t(j)) * std::size_t(nx) + std::size_t(i)] != 0;
+  // floor(q) lies in [0, n) exactly when q does, and there truncation is floor (NaN: outside).
+  if (!(q.x() >= 0.0f && q.y() >= 0.0f && q.z() >= 0.0f && q.x() < float(nx) && q.y() < float(ny) && q.z() < float(nz)))
+    return false;
+  return marked[(std::size_t(q.z()) * std::size_t(ny) + std::size_t(q.y())) * std::size_t(nx) + std::size_t(q.x())] != 0;
 }
 
 SceneView make_scene_view(std::span<const Eigen::Vector3f> scene, const std::optional<Eigen::Vector4f>& floor,

@@ -53,7 +53,14 @@ Seen classify(const SceneView& view, const Eigen::Vector3f& p_level, float toler
 namespace sight_detail {
 inline constexpr float kInf = std::numeric_limits<float>::infinity();
 
-inline int bin_of(float v, float inverse) { return int(std::floor(std::clamp(v * inverse, -1e8f, 1e8f))); }
+// floor(clamp(v * inverse)) without a floor call (SSE2 has no rounding instruction): truncation,
+// then one down where that rounded up; exact, as a float above 2^23 is already whole and an int
+// below it converts back exactly.
+inline int bin_of(float v, float inverse) {
+  const float x = std::clamp(v * inverse, -1e8f, 1e8f);
+  const int t = int(x);
+  return float(t) > x ? t - 1 : t;
+}
 
 // The nearest depth seen along the ray through image point (x, y): the scene's nearest point in
 // its bin (or, for an empty bin, in the 3 x 3 around it: gaps between points are not holes), else
