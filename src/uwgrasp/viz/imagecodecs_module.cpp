@@ -18,9 +18,7 @@ int uwgrasp_image_read(const char* path, int flags, cv::Mat* out) noexcept {
 
 int uwgrasp_image_encode(const char* extension, const cv::Mat* image, std::vector<unsigned char>* out) noexcept {
   try {
-    // An extension no encoder takes is refused here rather than by an OpenCV exception: the
-    // thread-local state that exception leaves in the codecs' libraries crashes LeakSanitizer's
-    // scan at exit (ASan builds only).
+    // An extension no encoder takes is refused here, without OpenCV logging and throwing.
     if (!cv::haveImageWriter(std::string("image") + extension)) return 1;
     return cv::imencode(extension, *image, *out) ? 0 : 1;
   } catch (...) {
