@@ -52,7 +52,8 @@ TEST(GraspsJson, FieldsAsSpecifiedAndByteIdenticalAcrossThreadCounts) {
   const Eigen::Quaterniond q(g["orientation_xyzw"][3].get<double>(), g["orientation_xyzw"][0].get<double>(),
                              g["orientation_xyzw"][1].get<double>(), g["orientation_xyzw"][2].get<double>());
   const Eigen::Vector3d a(g["approach"][0].get<double>(), g["approach"][1].get<double>(), g["approach"][2].get<double>());
-  EXPECT_LT((q.toRotationMatrix().col(0) - a).norm(), 1e-6);  // poses are float inside
+  EXPECT_NEAR(q.norm(), 1.0, 1e-12);
+  EXPECT_LT((q.toRotationMatrix().col(0) - a).norm(), 1e-12);
   std::size_t rejected = 0;
   for (const auto& [k, v] : j["counts"]["rejected"].items()) rejected += v.get<std::size_t>();
   EXPECT_EQ(rejected + j["counts"]["feasible"].get<std::size_t>(), j["counts"]["candidates"].get<std::size_t>());

@@ -11,8 +11,11 @@ namespace {
 using nlohmann::json;
 
 json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+// Unit quaternions: the grasp engine's poses are built from float axes, orthonormal to ~1e-7, and
+// a quaternion taken from such a matrix is off unit length by as much (tf2 and others check it).
+Eigen::Quaterniond unit(const Eigen::Matrix3d& R) { return Eigen::Quaterniond(R).normalized(); }
 json quat(const Eigen::Matrix3d& R) {
-  const Eigen::Quaterniond q(R);
+  const Eigen::Quaterniond q = unit(R);
   return {q.x(), q.y(), q.z(), q.w()};
 }
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
@@ -29,9 +32,11 @@ json grasp_json(const grasp::Grasp& g, const grasp::Frames& f, const Pose& T_FC,
   json j;
   j["rank"] = rank;
   j["position"] = vec(T_CG.translation());
-  j["orientation_xyzw"] = quat(T_CG.linear());
-  j["approach"] = vec(T_CG.linear().col(0));
-  j["closing"] = vec(T_CG.linear().col(1));
+  // approach and closing are the columns of the rotation the quaternion gives, to double precision.
+  const Eigen::Matrix3d R = unit(T_CG.linear()).toRotationMatrix();
+  j["orientation_xyzw"] = quat(R);
+  j["approach"] = vec(R.col(0));
+  j["closing"] = vec(R.col(1));
   j["score"] = g.scores.total;
   j["scores"] = {{"normal", g.scores.normal},
                  {"orientation", g.scores.orientation},
