@@ -125,6 +125,32 @@ TEST(Holds, ACurvedBackFromTheObjectsSymmetry) {
   }
 }
 
+// The standing mustard bottle in clear water with the sensor's noise: grasps close across it from
+// the seen front to the mirrored back. The back is mirrored about the bottle's second symmetry
+// plane, which sends the front behind the bottle and so lands few points on the seen surface:
+// searched freely within 20 degrees of perpendicular to the first plane, it came out 10-24
+// degrees off, the mirrored back turned by twice that, and closings the model put in force
+// closure needed mu 0.4-1.5 on the true bottle (3 of these 12 seeds). Square to the first plane,
+// and turned together with it, the back is where the bottle's is.
+TEST(Holds, TheSecondSymmetryPlaneIsSquareToTheFirst) {
+  constexpr int seeds = 12;
+  sim::Scene s;
+  try {
+    s = sim::builtin_scene("mustard_bottle");
+  } catch (const Error& e) {
+    GTEST_SKIP() << "shared data not found: " << e.what();
+  }
+  io::Config free = io::Config{};
+  free.grasp.shape.symmetry.perpendicular = false;
+  int held = 0, held_free = 0;
+  for (std::uint64_t seed = 1; seed <= std::uint64_t(seeds); ++seed) {
+    held += top1_holds(detect_and_judge(s, io::Config{}, seed, false, "clear"));
+    held_free += top1_holds(detect_and_judge(s, free, seed, false, "clear"));
+  }
+  EXPECT_EQ(held, seeds);
+  EXPECT_LE(held_free, seeds - 3) << "the scene no longer provokes the failure";
+}
+
 // A T shape: a wide block held 6 cm above the seafloor on a thin 1 cm post. Under the block the
 // gravity prior assumes volume the camera never saw; a grasp closing on that volume alone closes
 // on nothing (a miss) or on the post at a slant. Grasps must close on what the least model -

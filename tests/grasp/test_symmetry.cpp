@@ -201,6 +201,7 @@ TEST(Symmetry, ATurnedBoxIsCompletedByItsTwoFacePlanes) {
   const Sight s = sight_of(seen);
   const std::vector<MirrorPlane> planes = find_symmetry(seen.level, s.view(), 0.0f, SymmetryConfig{});
   ASSERT_EQ(planes.size(), 2u) << "both of the box's upright symmetry planes";
+  EXPECT_LT(std::abs(planes[0].normal.dot(planes[1].normal)), 1e-5f) << "square to each other";
   const Eigen::Matrix3f R = Eigen::AngleAxisf(yaw, V3::UnitZ()).toRotationMatrix();
   for (const MirrorPlane& p : planes) {
     const float along_x = std::abs(p.normal.dot(R.col(0))), along_y = std::abs(p.normal.dot(R.col(1)));

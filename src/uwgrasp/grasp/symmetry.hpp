@@ -15,8 +15,9 @@
 // object; each scored by support - violation_weight x violations on a sample of the points. The
 // best plane is refined on finer normals and offsets (an upright one unless a tilted one scores
 // `tilt_margin` better), aligned to the mirror pairs it makes, and kept when its violations and
-// support pass the limits; with it the best plane about perpendicular to it (a box's, a
-// bottle's second symmetry).
+// support pass the limits; with it the best plane perpendicular to it (a box's, a bottle's second
+// symmetry: only its turn about the first plane's normal and its offset are searched), and the
+// two turned together about their common line to where both fit best.
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
@@ -45,6 +46,10 @@ struct SymmetryConfig {
   float violation_weight = 3.0f;  // a violation costs this much support
   float max_violations = 0.1f;    // share of the sample a kept plane may put in seen free space
   float min_support = 0.05f;      // share of the sample it must map onto the seen surface
+  // The second plane exactly perpendicular to the first (two mirror planes of a box, a bottle, a
+  // can, a tool are at 90 degrees); false: searched within 20 degrees of perpendicular, as before
+  // (for objects with an odd-fold symmetry, such as a triangular prism).
+  bool perpendicular = true;
 };
 
 struct MirrorPlane {

@@ -77,6 +77,7 @@ void visit_shape(Visitor& v, grasp::ShapeConfig& s) {
     v.field("violation_weight", m.violation_weight, 0.0, 1000.0);
     v.field("max_violations", m.max_violations, 0.0, 1.0);
     v.field("min_support", m.min_support, 0.0, 1.0);
+    v.field("perpendicular", m.perpendicular);
   });
 }
 
