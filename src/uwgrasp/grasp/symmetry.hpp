@@ -61,7 +61,8 @@ struct MirrorPlane {
   Eigen::Vector3f mirror_direction(const Eigen::Vector3f& v) const { return v - 2.0f * normal.dot(v) * normal; }
 };
 
-// The object's symmetry planes (none, one, or two about perpendicular ones), best first.
+// The object's symmetry planes (none, one, or two perpendicular ones; about perpendicular with
+// `perpendicular` off), best first.
 // `level`: the object's points in L. `noise`: its surface noise (sigma, m). Deterministic.
 std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, const SceneView& view,
                                        float noise, const SymmetryConfig& cfg);
