@@ -68,13 +68,12 @@ Scored perpendicular(const Search& search, const MirrorPlane& first, const Symme
 std::pair<Scored, Scored> turned_together(const Search& search, const MirrorPlane& a, const MirrorPlane& b,
                                           const SymmetryConfig& cfg) {
   const V3 axis = a.normal.cross(b.normal).normalized();
-  const float step = 0.125f * cfg.angle_step, dd = 0.25f * cfg.offset_step;
+  const float step = 0.125f * cfg.angle_step;
   const int steps = 12;
   // A plane turned by R about the point of it nearest the sample's centroid, at its best offset.
   const auto turn = [&](const MirrorPlane& p, const Eigen::Matrix3f& R) {
     const V3 n = R * p.normal, on = search.centroid - (p.normal.dot(search.centroid) - p.offset) * p.normal;
-    const float d0 = n.dot(on);
-    return best_offset(search.sample, n, search.view, d0 - 4.0f * dd, d0 + 4.0f * dd, dd, search.tolerance, cfg);
+    return search.near(n, n.dot(on));
   };
   std::vector<std::pair<Scored, Scored>> tried(std::size_t(2 * steps + 1));
   tbb::parallel_for(std::size_t(0), tried.size(), [&](std::size_t k) {

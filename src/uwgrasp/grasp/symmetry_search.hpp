@@ -48,6 +48,15 @@ struct Search {
     const float reach = std::max(0.02f, 0.5f * (hi - lo));
     return best_offset(coarse_sample, n, view, lo, hi + reach, cfg.offset_step, tolerance, cfg);
   }
+  // The best offset for normal n within four quarter offset steps of d0.
+  Scored near(const V3& n, float d0) const {
+    const float dd = 0.25f * cfg.offset_step;
+    return best_offset(sample, n, view, d0 - 4.0f * dd, d0 + 4.0f * dd, dd, tolerance, cfg);
+  }
+  // Plane c turned to normal n about the point of it nearest the sample's centroid.
+  Scored turned_to(const MirrorPlane& c, const V3& n) const {
+    return near(n, n.dot(c.mirror(centroid) + (c.normal.dot(centroid) - c.offset) * c.normal));
+  }
   // The planes whose normals are perpendicular to `axis` (a unit normal), turned by phi from the
   // horizontal one: m = cos(phi) a + sin(phi) b, a = the horizontal unit vector across the axis,
   // b = axis x a (vertical when the axis is horizontal). Each at its best offset; in phi order.
@@ -71,26 +80,21 @@ struct Search {
         tried[k].s = coarse(n);
         return;
       }
-      const float dd = 0.25f * cfg.offset_step;
-      const MirrorPlane& c = around->plane;
-      const float d0 = n.dot(c.mirror(centroid) + (c.normal.dot(centroid) - c.offset) * c.normal);
-      tried[k].s = best_offset(sample, n, view, d0 - 4.0f * dd, d0 + 4.0f * dd, dd, tolerance, cfg);
+      tried[k].s = turned_to(around->plane, n);
     });
     return tried;
   }
   // Finer normals and offsets around a coarse plane.
   // The normals are scored in parallel, then taken in their order (the first of equal scores).
   Scored refine(const Scored& c, float azimuth, float tilt, float tilt_step) const {
-    const float da = 0.25f * cfg.angle_step, dt = 0.25f * tilt_step, dd = 0.25f * cfg.offset_step;
+    const float da = 0.25f * cfg.angle_step, dt = 0.25f * tilt_step;
     const int tilt_steps = dt > 0.0f ? 3 : 0, columns = 2 * tilt_steps + 1;
     std::vector<Scored> tried(std::size_t(7 * columns));
     tbb::parallel_for(std::size_t(0), tried.size(), [&](std::size_t k) {
       const int i = int(k) / columns - 3, j = int(k) % columns - tilt_steps;
       const float tl = std::clamp(tilt + float(j) * dt, -cfg.max_tilt, cfg.max_tilt);
       const V3 n = direction(azimuth + float(i) * da, tl);
-      // The same plane turned about the point of it nearest the sample's centroid.
-      const float d0 = n.dot(c.plane.mirror(centroid) + (c.plane.normal.dot(centroid) - c.plane.offset) * c.plane.normal);
-      tried[k] = best_offset(sample, n, view, d0 - 4.0f * dd, d0 + 4.0f * dd, dd, tolerance, cfg);
+      tried[k] = turned_to(c.plane, n);
     });
     Scored best;
     for (const Scored& s : tried)
