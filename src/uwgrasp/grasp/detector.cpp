@@ -11,93 +11,16 @@
 #include <string>
 
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/drawing.hpp"
 #include "uwgrasp/grasp/gate.hpp"
 #include "uwgrasp/grasp/robust.hpp"
 
 namespace uwgrasp::grasp {
 
 namespace {
-struct LevelCloud {
-  std::vector<Eigen::Vector3f> points, normals;
-};
-
 LevelCloud to_level(const Cloud& object, const Frames& f) {
   return {points_to_level(object.points, f), directions_to_level(object.normals, f)};
 }
-
-// What the samplers draw from: the visible points (L), the object's model (its visible points
-// and unseen surface, L) and its shape.
-struct SampleInputs {
-  const LevelCloud& l;
-  const LevelCloud& model;
-  const ObjectShape& shape;
-  const Gripper& gripper;  // as checked (grown by the margin)
-  const Gate& gate;  // every check before scoring
-};
-
-
-// The candidates drawn and, for those that passed every check while drawn (only the antipodal
-// sampler checks as it draws), `passed` and their gripper check: those need not be checked again.
-struct Drawn {
-  std::vector<Candidate> candidates;
-  std::vector<char> passed;
-  std::vector<Check> checks;
-};
-
-std::vector<Candidate> draw(SamplerKind kind, const SampleInputs& in, const GraspConfig& cfg,
-                            const Frames& f, std::uint64_t seed, std::uint32_t count,
-                            std::uint32_t first, Drawn& d) {
-  const Eigen::Matrix3d R_BG = f.body_from_gripper.linear();
-  const LevelCloud& l = in.l;
-  switch (kind) {
-    case SamplerKind::uniform: return sample_uniform(l.points, cfg.sampler, R_BG, seed, count, first);
-    case SamplerKind::surface: return sample_surface(l.points, l.normals, cfg.sampler, seed, count, first);
-    case SamplerKind::antipodal:
-      // Without the object's shape there is no far side to find: the surface sampler instead.
-      if (in.shape.empty()) return sample_surface(l.points, l.normals, cfg.sampler, seed, count, first);
-    {
-      const Box& palm = in.gripper.solids[int(Part::palm)];
-      // From every surface the model has, unseen ones included: a bar seen end-on from above
-      // shows no side to close on, its model does.
-      const std::uint32_t enough = cfg.sampler.enough == 0 ? count : cfg.sampler.enough;
-      d.checks.resize(count);
-      const ClearFn clear = [&](const Candidate& c, std::uint32_t slot) { return in.gate.passes(c, &d.checks[slot]); };
-      return sample_antipodal(in.model.points, in.model.normals, in.shape, cfg.sampler, R_BG,
-                              max_grasp_width(in.gripper), -palm.hi.x(), palm.half().y(),
-                              palm.half().z(), seed, count, first, clear, enough, &d.passed);
-    }
-    default: return sample_normal(l.points, cfg.sampler, R_BG, seed, count, first);
-  }
-}
-
-Drawn sample(SamplerKind kind, const SampleInputs& in, const GraspConfig& cfg, const Frames& f,
-             std::uint64_t seed, std::uint32_t count, std::uint32_t first) {
-  Drawn d;
-  d.candidates = draw(kind, in, cfg, f, seed, count, first, d);
-  d.passed.resize(d.candidates.size(), 0);
-  d.checks.resize(d.candidates.size());
-  return d;
-}
-
-// The gripper check of the candidates that did not pass while drawn (the same Checker as the
-// gate's: those that passed keep the check the gate made; 10-13 ms a frame saved).
-void check_rest(const PointBvh& bvh, const Gripper& g, Drawn& d) {
-  const Checker check(bvh, g);
-  tbb::parallel_for(std::size_t(0), d.candidates.size(), [&](std::size_t i) {
-    if (!d.passed[i]) d.checks[i] = check(d.candidates[i]);
-  });
-}
-
-struct Pool {
-  std::vector<Candidate> candidates;
-  std::vector<Check> checks;
-  std::vector<char> gated;  // passed every check while sampling
-  void add(Drawn d) {
-    gated.insert(gated.end(), d.passed.begin(), d.passed.end());
-    candidates.insert(candidates.end(), d.candidates.begin(), d.candidates.end());
-    checks.insert(checks.end(), d.checks.begin(), d.checks.end());
-  }
-};
 
 // Runs f, keeping what it throws for the caller to raise.
 template <class F>
@@ -204,37 +127,6 @@ std::vector<Grasp> score_robust(const ModelView& view, const LevelCloud& cloud, 
   return all;
 }
 
-// automatic: a pilot share on each sampler, then the rest of the budget on the one that found
-// the most feasible candidates (ties: normal, uniform, surface, antipodal - the thesis's order of
-// use, then ours; antipodal only when the object has a shape model to close on).
-SamplerKind run_auto(const SampleInputs& in, const GraspConfig& cfg, const Frames& f,
-                     const Gripper& g, const PointBvh& bvh, std::uint64_t seed, StageTimer& timer,
-                     Pool& pool) {
-  const auto n = cfg.sampler.samples;
-  const auto pilot = static_cast<std::uint32_t>(std::lround(cfg.sampler.pilot * n));
-  std::vector<SamplerKind> kinds{SamplerKind::normal, SamplerKind::uniform, SamplerKind::surface};
-  if (!in.shape.empty()) kinds.push_back(SamplerKind::antipodal);
-  SamplerKind best = SamplerKind::normal;
-  std::size_t best_feasible = 0;
-  for (SamplerKind k : kinds) {
-    timer.start("sample");
-    Drawn d = sample(k, in, cfg, f, seed, pilot, 0);
-    timer.start("check");
-    check_rest(bvh, g, d);
-    std::size_t feasible = 0;
-    for (std::size_t i = 0; i < d.candidates.size(); ++i)
-      feasible += d.checks[i].feasible() && (d.passed[i] || in.gate.after_check(d.candidates[i]) == Reject::none);
-    if (feasible > best_feasible) best = k, best_feasible = feasible;
-    pool.add(std::move(d));
-  }
-  const auto used = std::min<std::uint32_t>(n, std::uint32_t(kinds.size()) * pilot);
-  timer.start("sample");
-  Drawn d = sample(best, in, cfg, f, seed, n - used, pilot);
-  timer.start("check");
-  check_rest(bvh, g, d);
-  pool.add(std::move(d));
-  return best;
-}
 }  // namespace
 
 ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double leaf,
@@ -269,15 +161,10 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   const Gate gate({bvh, model.gripper, g, out.shape, out.frames, cfg.occlusion.enabled ? &shadow : nullptr,
                    cfg.occlusion, cfg.reach, scene});
   const SampleInputs inputs{l, model.cloud, out.shape, model.gripper, gate};
-  if (cfg.sampler.kind == SamplerKind::automatic) {
-    out.sampler = run_auto(inputs, cfg, out.frames, model.gripper, bvh, seed, timer, pool);
-  } else {
-    timer.start("sample");
-    Drawn d = sample(cfg.sampler.kind, inputs, cfg, out.frames, seed, cfg.sampler.samples, 0);
-    timer.start("check");
-    check_rest(bvh, model.gripper, d);
-    pool.add(std::move(d));
-  }
+  if (cfg.sampler.kind == SamplerKind::automatic)
+    out.sampler = run_auto(inputs, cfg, out.frames, bvh, seed, timer, pool);
+  else
+    pool.add(draw_checked(cfg.sampler.kind, inputs, cfg, out.frames, bvh, seed, cfg.sampler.samples, 0, timer));
   timer.start("reach");  // with the shape and the shadow
   tbb::parallel_for(std::size_t(0), pool.candidates.size(), [&](std::size_t i) {
     // A candidate that passed the gate while sampling passed these very checks.
