@@ -90,6 +90,36 @@ ModelView model_view(const Model& m, const PointBvh& bvh, const PointBvh& core_b
   return v;
 }
 
+// The leaders of the first measurement measured again with refine_samples new poses each, their
+// robustness the share over all the poses measured; repeated while the best is one measured only
+// once (a refined leader that fell gives way to the next, which must be refined in its turn).
+void refine_leaders(const ModelView& view, const Pool& pool, std::vector<Grasp>& all,
+                    std::span<const std::size_t> measured, const RobustConfig& cfg, std::uint64_t seed) {
+  if (cfg.refine == 0 || cfg.refine_samples == 0 || cfg.samples == 0) return;
+  std::vector<std::size_t> order(measured.begin(), measured.end());
+  std::vector<char> refined(all.size(), 0);
+  const auto better = [&](std::size_t a, std::size_t b) {
+    return all[a].scores.total != all[b].scores.total ? all[a].scores.total > all[b].scores.total : a < b;
+  };
+  const float n0 = float(cfg.samples), n1 = float(cfg.refine_samples);
+  while (!order.empty()) {
+    std::sort(order.begin(), order.end(), better);
+    if (refined[order.front()]) return;
+    std::vector<std::size_t> next;
+    for (std::size_t k = 0; k < order.size() && next.size() < cfg.refine; ++k)
+      if (!refined[order[k]]) next.push_back(order[k]);
+    std::vector<std::uint32_t> which;
+    for (std::size_t k : next) which.push_back(all[k].candidate);
+    const std::vector<float> more = robustness(view, pool.candidates, which, cfg, seed, cfg.samples, cfg.refine_samples);
+    for (std::size_t j = 0; j < next.size(); ++j) {
+      Grasp& g = all[next[j]];
+      g.robustness = (g.robustness * n0 + more[j] * n1) / (n0 + n1);
+      g.scores.total = robust_total(g);
+      refined[next[j]] = 1;
+    }
+  }
+}
+
 // The robust mode's scoring (score.hpp): predicted contacts for every feasible candidate, the
 // robustness of the best predicted, then the ranking.
 std::vector<Grasp> score_robust(const ModelView& view, const LevelCloud& cloud, Pool& pool,
@@ -116,6 +146,7 @@ std::vector<Grasp> score_robust(const ModelView& view, const LevelCloud& cloud, 
     g.robustness = share[k];
     g.scores.total = robust_total(g);
   }
+  refine_leaders(view, pool, all, std::span(order.data(), m), cfg.robust, seed);
   // A grasp that holds on the model in none of its perturbed poses is not offered (not_robust):
   // "no grasp" is the honest answer when nothing the model shows can be held (e.g. a flat box
   // on the seafloor), not a grasp the detector itself expects to fail. The candidates past the

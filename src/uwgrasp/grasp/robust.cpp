@@ -63,17 +63,18 @@ Candidate perturb(const Candidate& c, const RobustConfig& cfg, std::uint64_t see
 
 std::vector<float> robustness(const ModelView& m, std::span<const Candidate> candidates,
                               std::span<const std::uint32_t> which, const RobustConfig& cfg,
-                              std::uint64_t seed) {
+                              std::uint64_t seed, std::uint32_t first, std::uint32_t samples) {
+  if (samples == 0) samples = cfg.samples;
   std::vector<float> out(which.size(), 0.0f);
-  if (cfg.samples == 0) return out;
-  std::vector<char> held(which.size() * cfg.samples, 0);
+  if (samples == 0) return out;
+  std::vector<char> held(which.size() * samples, 0);
   tbb::parallel_for(std::size_t(0), held.size(), [&](std::size_t t) {
-    const std::uint32_t i = which[t / cfg.samples], k = std::uint32_t(t % cfg.samples);
+    const std::uint32_t i = which[t / samples], k = first + std::uint32_t(t % samples);
     held[t] = holds_on_model(m, perturb(candidates[i], cfg, seed, i, k), cfg.mu);
   });
   for (std::size_t j = 0; j < which.size(); ++j)
-    out[j] = float(std::count(held.begin() + std::ptrdiff_t(j * cfg.samples),
-                              held.begin() + std::ptrdiff_t((j + 1) * cfg.samples), 1)) / float(cfg.samples);
+    out[j] = float(std::count(held.begin() + std::ptrdiff_t(j * samples),
+                              held.begin() + std::ptrdiff_t((j + 1) * samples), 1)) / float(samples);
   return out;
 }
 

@@ -21,6 +21,11 @@ struct RobustConfig {
   double mu = 0.3;               // friction coefficient the model's grasps must hold at
   std::uint32_t samples = 16;    // perturbed poses per candidate
   std::uint32_t candidates = 40; // the best-predicted candidates whose robustness is measured
+  // The leaders after that measurement are measured again with `refine_samples` more poses,
+  // `refine` at a time, until the best has been: the top-1 is then not merely the luckiest of
+  // 40 noisy 16-pose estimates (the winner's curse).
+  std::uint32_t refine = 4;
+  std::uint32_t refine_samples = 32;
   double sigma_position = 0.005; // m per axis
   double sigma_angle = 0.0524;   // rad per axis (3 degrees)
   // Whether the thin core's friction estimate counts too (the worse of the two). Off by
@@ -58,8 +63,10 @@ Candidate perturb(const Candidate& c, const RobustConfig& cfg, std::uint64_t see
                   std::uint32_t candidate, std::uint32_t k);
 // Robustness of each candidate in `which` (share of cfg.samples perturbed poses that hold),
 // computed in parallel; the same seed gives the same shares at any thread count.
+// Draws first .. first + samples - 1 of each candidate's stream: a second call with first =
+// cfg.samples measures new poses.
 std::vector<float> robustness(const ModelView& m, std::span<const Candidate> candidates,
                               std::span<const std::uint32_t> which, const RobustConfig& cfg,
-                              std::uint64_t seed);
+                              std::uint64_t seed, std::uint32_t first = 0, std::uint32_t samples = 0);
 
 }  // namespace uwgrasp::grasp

@@ -88,6 +88,8 @@ void visit_score(Visitor& v, grasp::ScoreConfig& s) {
     v.field("mu", s.robust.mu, 1e-3, 100.0);
     v.field("samples", s.robust.samples, 0, 1e5);
     v.field("candidates", s.robust.candidates, 0, 1e6);
+    v.field("refine", s.robust.refine, 0, 1e6);
+    v.field("refine_samples", s.robust.refine_samples, 0, 1e5);
     v.field("sigma_position", s.robust.sigma_position, 0.0, 1.0);
     v.field("sigma_angle", s.robust.sigma_angle, 0.0, kPi);
     v.field("core_friction", s.robust.core_friction);
