@@ -131,7 +131,9 @@ TEST(Holds, ACurvedBackFromTheObjectsSymmetry) {
 // searched freely within 20 degrees of perpendicular to the first plane, it came out 10-24
 // degrees off, the mirrored back turned by twice that, and closings the model put in force
 // closure needed mu 0.4-1.5 on the true bottle (3 of these 12 seeds). Square to the first plane,
-// and turned together with it, the back is where the bottle's is.
+// and turned together with it, the back is where the bottle's is. The seeds reproduced the
+// failure with the organised frames' depth rule of the time (2 % of the range per pixel step);
+// the pair is compared there, and the default must hold on every seed too.
 TEST(Holds, TheSecondSymmetryPlaneIsSquareToTheFirst) {
   constexpr int seeds = 12;
   sim::Scene s;
@@ -140,14 +142,18 @@ TEST(Holds, TheSecondSymmetryPlaneIsSquareToTheFirst) {
   } catch (const Error& e) {
     GTEST_SKIP() << "shared data not found: " << e.what();
   }
-  io::Config free = io::Config{};
+  io::Config square = io::Config{};
+  square.preprocess.organised.depth_change = 0.02f;
+  io::Config free = square;
   free.grasp.shape.symmetry.perpendicular = false;
-  int held = 0, held_free = 0;
+  int held = 0, held_square = 0, held_free = 0;
   for (std::uint64_t seed = 1; seed <= std::uint64_t(seeds); ++seed) {
     held += top1_holds(detect_and_judge(s, io::Config{}, seed, false, "clear"));
+    held_square += top1_holds(detect_and_judge(s, square, seed, false, "clear"));
     held_free += top1_holds(detect_and_judge(s, free, seed, false, "clear"));
   }
   EXPECT_EQ(held, seeds);
+  EXPECT_EQ(held_square, seeds);
   EXPECT_LE(held_free, seeds - 3) << "the scene no longer provokes the failure";
 }
 

@@ -22,7 +22,10 @@ struct OrganisedConfig {
   // The normals' window: 7 x 7. On a frame with 1 mm depth noise at 1 m it halves the normals'
   // median error of the 5 x 5 window (3.3 against 6.5 degrees) at the same cost per pixel.
   std::uint32_t normal_half_window = 3;
-  float depth_change = 0.02f;  // range continuity per pixel step, as a share of the range
+  // Range continuity per pixel step, as a share of the range. 1 %: on the labelled mOSD frames
+  // 2 % joined touching objects (best-segment IoU 0.815 against 0.824), and the judged grasps
+  // on the simulated scenes were the same (docs/benchmarks.md).
+  float depth_change = 0.01f;
 };
 
 // Which pixels hold the points still in play: pixel[j] is the pixel of point j (ascending), and
