@@ -90,6 +90,11 @@ ModelView model_view(const Model& m, const PointBvh& bvh, const PointBvh& core_b
   return v;
 }
 
+// Whether all[a] ranks before all[b]: the higher total, ties by position.
+bool ranks_before(const std::vector<Grasp>& all, std::size_t a, std::size_t b) {
+  return all[a].scores.total != all[b].scores.total ? all[a].scores.total > all[b].scores.total : a < b;
+}
+
 // The leaders of the first measurement measured again with refine_samples new poses each, their
 // robustness the share over all the poses measured; repeated while the best is one measured only
 // once (a refined leader that fell gives way to the next, which must be refined in its turn).
@@ -98,9 +103,7 @@ void refine_leaders(const ModelView& view, const Pool& pool, std::vector<Grasp>&
   if (cfg.refine == 0 || cfg.refine_samples == 0 || cfg.samples == 0) return;
   std::vector<std::size_t> order(measured.begin(), measured.end());
   std::vector<char> refined(all.size(), 0);
-  const auto better = [&](std::size_t a, std::size_t b) {
-    return all[a].scores.total != all[b].scores.total ? all[a].scores.total > all[b].scores.total : a < b;
-  };
+  const auto better = [&](std::size_t a, std::size_t b) { return ranks_before(all, a, b); };
   const float n0 = float(cfg.samples), n1 = float(cfg.refine_samples);
   while (!order.empty()) {
     std::sort(order.begin(), order.end(), better);
@@ -135,9 +138,8 @@ std::vector<Grasp> score_robust(const ModelView& view, const LevelCloud& cloud, 
   std::vector<std::size_t> order(all.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
   const std::size_t m = std::min<std::size_t>(cfg.robust.candidates, order.size());
-  std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(m), order.end(), [&](std::size_t a, std::size_t b) {
-    return all[a].scores.total != all[b].scores.total ? all[a].scores.total > all[b].scores.total : a < b;
-  });
+  std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(m), order.end(),
+                    [&](std::size_t a, std::size_t b) { return ranks_before(all, a, b); });
   std::vector<std::uint32_t> which;
   for (std::size_t k = 0; k < m; ++k) which.push_back(all[order[k]].candidate);
   const std::vector<float> share = robustness(view, pool.candidates, which, cfg.robust, seed);

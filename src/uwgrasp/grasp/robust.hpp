@@ -61,10 +61,10 @@ bool holds_on_model(const ModelView& m, const Candidate& c, double mu);
 // The candidate perturbed by draw k of its own stream.
 Candidate perturb(const Candidate& c, const RobustConfig& cfg, std::uint64_t seed,
                   std::uint32_t candidate, std::uint32_t k);
-// Robustness of each candidate in `which` (share of cfg.samples perturbed poses that hold),
-// computed in parallel; the same seed gives the same shares at any thread count.
-// Draws first .. first + samples - 1 of each candidate's stream: a second call with first =
-// cfg.samples measures new poses.
+// Robustness of each candidate in `which`: the share of its perturbed poses that hold, over
+// draws first .. first + samples - 1 of its stream (samples 0: cfg.samples), so a second call
+// with first = cfg.samples measures new poses. Computed in parallel; the same seed gives the
+// same shares at any thread count.
 std::vector<float> robustness(const ModelView& m, std::span<const Candidate> candidates,
                               std::span<const std::uint32_t> which, const RobustConfig& cfg,
                               std::uint64_t seed, std::uint32_t first = 0, std::uint32_t samples = 0);
