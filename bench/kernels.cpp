@@ -1,16 +1,24 @@
-// Google Benchmark kernels of the cloud/ and segment/ stages on the generated seafloor scene, and
-// of the grasp engine on the thesis's barbell (64,648 points, one-sided).
+// Google Benchmark kernels of the cloud/ and segment/ stages on the generated seafloor scene, of
+// the organised path's stages on a 640 x 480 frame of it (or on the organised .pcd that
+// UWGRASP_BENCH_FRAME names, e.g. a mOSD_learn frame), and of the grasp engine on the thesis's
+// barbell (64,648 points, one-sided).
 #include <benchmark/benchmark.h>
+
+#include <cstdlib>
 
 #include "objects.hpp"
 #include "scene.hpp"
 #include "uwgrasp/cloud/filters.hpp"
 #include "uwgrasp/cloud/kdtree.hpp"
 #include "uwgrasp/cloud/normals.hpp"
+#include "uwgrasp/cloud/organised.hpp"
 #include "uwgrasp/cloud/outliers.hpp"
+#include "uwgrasp/cloud/preprocess.hpp"
 #include "uwgrasp/cloud/ransac.hpp"
 #include "uwgrasp/cloud/voxel.hpp"
+#include "uwgrasp/core/memory.hpp"
 #include "uwgrasp/grasp/detector.hpp"
+#include "uwgrasp/io/pcd.hpp"
 #include "uwgrasp/segment/pipeline.hpp"
 
 using namespace uwgrasp;
@@ -43,7 +51,57 @@ const Barbell& barbell() {
   }();
   return b;
 }
+// A 640 x 480 frame of the scene after the organised path's plane stage (outlier removal off, so
+// every point the plane left is here) and the map of its pixels: the input of the window stages.
+struct Frame {
+  Cloud raw = std::getenv("UWGRASP_BENCH_FRAME") ? io::load_cloud(std::getenv("UWGRASP_BENCH_FRAME"))
+                                                 : bench::seafloor_scene(640, 480);
+  Cloud cloud;
+  cloud::PixelMap map;
+};
+const Frame& frame() {
+  static const Frame f = [] {
+    keep_freed_memory();  // a stream of frames, as bench/frame runs them
+    Frame out;
+    cloud::PreprocessConfig cfg;
+    cfg.outliers.enabled = false;
+    StageTimer timer;
+    cloud::Preprocessed pre = cloud::preprocess(out.raw, cfg, 1, timer);
+    std::vector<std::uint32_t> pixel(pre.cloud.size());
+    for (std::size_t i = 0; i < pre.output_of_input.size(); ++i)
+      if (pre.output_of_input[i] >= 0) pixel[std::size_t(pre.output_of_input[i])] = std::uint32_t(i);
+    out.map = cloud::pixel_map(out.raw.width, out.raw.height, std::move(pixel));
+    out.cloud = std::move(pre.cloud);
+    return out;
+  }();
+  return f;
+}
 }  // namespace
+
+// The organised path, stage by stage, on the 640 x 480 frame.
+static void BM_OrgPreprocess(benchmark::State& s) {
+  for (auto _ : s) {
+    StageTimer timer;
+    benchmark::DoNotOptimize(cloud::preprocess(frame().raw, {}, 1, timer));
+    for (const auto& st : timer.stages()) s.counters[st.name] += st.ms;
+  }
+  for (auto& [name, c] : s.counters) c = c.value / double(s.iterations());
+}
+static void BM_OrgWindowLists(benchmark::State& s) {
+  for (auto _ : s)
+    benchmark::DoNotOptimize(cloud::window_neighbours(frame().cloud.points, frame().map, {}, frame().cloud.viewpoint));
+}
+static void BM_OrgOutlierStatistic(benchmark::State& s) {
+  for (auto _ : s)
+    benchmark::DoNotOptimize(cloud::window_mean_distances(frame().cloud.points, frame().map, 2, 10));
+}
+static void BM_OrgNormals(benchmark::State& s) {
+  Cloud c = frame().cloud;
+  for (auto _ : s) cloud::window_normals(c, frame().map, {});
+}
+static void BM_OrgSegments(benchmark::State& s) {
+  for (auto _ : s) benchmark::DoNotOptimize(segment::segment_scene(frame().raw, {}, {}, 1));
+}
 
 static void BM_BvhBuild(benchmark::State& s) {
   for (auto _ : s) benchmark::DoNotOptimize(grasp::build_bvh(barbell().points));
@@ -85,6 +143,11 @@ BENCHMARK(BM_Outliers)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Ransac)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Normals)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WholeChain)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OrgPreprocess)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OrgWindowLists)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OrgOutlierStatistic)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OrgNormals)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OrgSegments)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BvhBuild)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Check3000)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

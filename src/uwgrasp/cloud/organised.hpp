@@ -54,10 +54,6 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
                                          const PixelMap& map, std::uint32_t half_window,
                                          std::uint32_t k);
 
-// Restricts the lists to the points `kept` (ascending indices into the rows), in place,
-// renumbered to positions in `kept`: what window_neighbours would give on the smaller map.
-void keep_neighbours(Neighbours& nb, std::span<const std::uint32_t> kept);
-
 // Normals and curvature (4.2.1, eq. 4.4-4.7) over each point's window of normal_half_window:
 // its continuous in-play pixels, as for window_neighbours. A point whose whole window qualifies
 // takes the covariance from separable running sums over the frame (the cost does not depend on

@@ -168,18 +168,18 @@ void preprocess_organised(const Cloud& in, const PreprocessConfig& cfg, std::uin
   }
   timer.start("outliers");
   PixelMap map = pixels_in_play(in, out.output_of_input, cur.size());
-  out.neighbours = window_neighbours(cur.points, map, cfg.organised, cur.viewpoint);
   if (cfg.outliers.enabled) {
     Filtered f = remove_outliers_by(
         cur, cfg.outliers,
         window_mean_distances(cur.points, map, cfg.organised.half_window, cfg.outliers.k));
     if (f.indices.size() != cur.size()) {
-      keep_neighbours(out.neighbours, f.indices);
       apply(std::move(f), cur, out.output_of_input);
       map = pixels_in_play(in, out.output_of_input, cur.size());
     }
   }
   require_points(cur, "outliers");  // e.g. a frame of isolated pixels
+  // The lists of the points kept only (the outlier statistic takes every in-play pixel).
+  out.neighbours = window_neighbours(cur.points, map, cfg.organised, cur.viewpoint);
   out.counts.after_outliers = cur.size();
   timer.start("normals");
   window_normals(cur, map, cfg.organised);
