@@ -2,7 +2,7 @@
 // one process (as a camera stream would run), at 1 and 2 threads; the k-d tree path on the same
 // frames; and PCL's organised chain (IntegralImageNormalEstimation +
 // OrganizedMultiPlaneSegmentation + OrganizedConnectedComponentSegmentation) on the same frames.
-//   frame [--repeats N]   (default 20)
+//   frame [--repeats N] [--frame NAME]   (default 20 repeats; NAME: a frame below or "simulated")
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -63,15 +63,19 @@ Row run_uwgrasp(const Cloud& frame, io::Config cfg, int repeats) {
 int main(int argc, char** argv) {
   keep_freed_memory();  // a stream of frames: the first frame's buffers serve the rest
   int repeats = 20;
-  for (int i = 1; i + 1 < argc; ++i)
+  std::string only;  // one frame's name, or every frame
+  for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--repeats")) repeats = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--frame")) only = argv[++i];
+  }
   io::Config cfg = io::load_config("", {"segment.object.by=largest"});
   std::vector<std::pair<std::string, Cloud>> frames;
   const std::string dir = std::string(UWGRASP_DATA_DIR) + "/clouds/";
   for (const char* f : {"table_scene_mug_stereo_textured", "mOSD_learn0", "mOSD_learn17",
                         "mOSD_learn25", "mOSD_learn33"})
-    if (std::filesystem::exists(dir + f + ".pcd")) frames.emplace_back(f, io::load_cloud(dir + f + ".pcd"));
-  frames.emplace_back("simulated thesis scene", bench::seafloor_scene(640, 480));
+    if ((only.empty() || only == f) && std::filesystem::exists(dir + f + ".pcd"))
+      frames.emplace_back(f, io::load_cloud(dir + f + ".pcd"));
+  if (only.empty() || only == "simulated") frames.emplace_back("simulated thesis scene", bench::seafloor_scene(640, 480));
   std::printf("| frame | threads | segments ms | best grasp ms | k-d tree path segments ms | "
               "PCL organised chain ms | PCL / uwgrasp (segments) |\n|---|---|---|---|---|---|---|\n");
   std::vector<std::pair<std::string, Row>> stage_rows;

@@ -9,63 +9,14 @@
 #include <algorithm>
 #include <string>
 
+#include "holds_scenes.hpp"
 #include "uwgrasp/core/error.hpp"
-#include "uwgrasp/eval/evaluate.hpp"
 #include "uwgrasp/eval/exists.hpp"
-#include "uwgrasp/io/config.hpp"
 #include "uwgrasp/sim/builtin_scenes.hpp"
-#include "uwgrasp/sim/render.hpp"
 
 namespace {
 using namespace uwgrasp;
-using V3 = Eigen::Vector3d;
-
-sim::SceneObject solid(const std::string& name, const sim::Shape& shape, const V3& centre) {
-  Pose p = Pose::Identity();
-  p.translation() = centre;
-  return {name, {{shape, Pose::Identity()}}, p, {200, 30, 30}, true};
-}
-
-// One object of interest on the seafloor, seen from 0.7 m by the built-in tilted camera.
-sim::Scene on_floor(const sim::SceneObject& o) {
-  sim::Scene s;
-  s.name = o.name;
-  s.objects = {o};
-  s.vehicle = sim::looking_at(o.pose.translation(), 0.7);
-  s.camera_mount = sim::tilted_camera();
-  return s;
-}
-
-struct Judged {
-  grasp::Detection detection;
-  eval::Evaluation evaluation;
-  bool exists = false;  // the judge's own search finds a grasp that holds
-};
-
-// Renders with the perfect sensor (or `water`, with sensor noise), detects with `cfg` and
-// judges every returned grasp.
-Judged detect_and_judge(const sim::Scene& scene, io::Config cfg, std::uint64_t seed = 1,
-                        bool search_exists = true, const std::string& water = "") {
-  const sim::World world(scene);
-  sim::RenderConfig rc;
-  rc.noise.enabled = !water.empty();
-  if (!water.empty()) rc.water = sim::water_preset(water);
-  const Pose T_WC = sim::camera_pose(scene, {});
-  const sim::Frame f = sim::render_rgbd(world, T_WC, rc, seed);
-  cfg.grasp.frames.camera = *scene.camera_mount;
-  Judged out;
-  out.detection = grasp::detect(f.cloud, cfg.preprocess, cfg.segment, cfg.grasp, seed);
-  const eval::Camera cam{T_WC, f.intrinsics, rc.camera.max_range};
-  const grasp::Gripper g = grasp::make_gripper(cfg.grasp.gripper);
-  std::vector<Pose> poses;
-  for (const auto& k : out.detection.result.grasps)
-    poses.push_back(T_WC * grasp::camera_from_gripper(k, out.detection.result.frames));
-  eval::SummaryConfig sc;
-  sc.top = 10;
-  out.evaluation = eval::evaluate(world, cam, g, poses, 0, sc, eval::RobustConfig{}, seed);
-  out.exists = search_exists && eval::find_any_grasp(world, cam, g, 0).exists;
-  return out;
-}
+using namespace uwgrasp::holds;
 
 // The thesis's pipeline: its sampler along the normals and q_tot on the one-sided cloud.
 io::Config thesis_scoring() {
@@ -80,10 +31,6 @@ std::size_t count(const Judged& j, eval::Verdict v) {
   std::size_t n = 0;
   for (const auto& k : j.evaluation.judgements) n += k.verdict == v;
   return n;
-}
-
-bool top1_holds(const Judged& j) {
-  return !j.evaluation.judgements.empty() && j.evaluation.judgements.front().holds(0.4);
 }
 }  // namespace
 

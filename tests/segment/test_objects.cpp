@@ -101,6 +101,35 @@ TEST(Objects, PartsOfTheSameColourJoinOthersDoNot) {
   EXPECT_NE(std::count(any.begin(), any.end(), object_of_range(o, blue, c.size())), 1);
 }
 
+// The same scene as turbid water shows it: every colour dimmed below min_intensity (the red
+// body's intensity 0.10, the handle's 0.08). The object is still the red one and its handle
+// still joins it (half the body's mean intensity, not an absolute share); the dimmed blue
+// object does not. A scene whose reddest objects barely differ from each other (a seafloor's
+// tint) has no red object.
+TEST(Objects, PartsJoinAsTheWaterDimsTheirColourAlike) {
+  Cloud c = painted(test::box_surface({0, 0, 1}, {0.08f, 0.08f, 1.08f}, 0.004f), {70, 45, 40});
+  const std::size_t body = c.size();
+  test::append(c, painted(test::box_surface({0.03f, 0.11f, 1.0f}, {0.05f, 0.2f, 1.02f}, 0.004f), {65, 45, 40}));
+  const std::size_t handle = c.size();
+  test::append(c, painted(test::box_surface({0.11f, 0, 1}, {0.15f, 0.04f, 1.04f}, 0.004f), {40, 45, 70}));
+  const auto nb = neighbours(c);
+  const Objects o = connected_objects(c, nb, connection_gap(nb), 10);
+  ASSERT_EQ(o.points.size(), 3u);
+  const ObjectConfig cfg;
+  ASSERT_LT(color_intensity({70, 45, 40}, "red"), cfg.min_intensity);
+  const std::size_t k = select_whole_object(c, o, Segmentation{}, cfg);
+  ASSERT_EQ(k, object_of_range(o, 0, body));
+  const auto parts = gather_parts(c, o, k, cfg, cfg.part_reach);
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts[1], object_of_range(o, body, handle));
+  // Two objects of the seafloor's tint (red intensity 0.02 and 0.03): nothing stands out.
+  Cloud tint = painted(test::box_surface({0, 0, 1}, {0.08f, 0.08f, 1.08f}, 0.004f), {60, 55, 50});
+  test::append(tint, painted(test::box_surface({0.2f, 0, 1}, {0.28f, 0.08f, 1.08f}, 0.004f), {62, 55, 50}));
+  const auto nt = neighbours(tint);
+  EXPECT_THROW(select_whole_object(tint, connected_objects(tint, nt, connection_gap(nt), 10), Segmentation{}, cfg),
+               Error);
+}
+
 TEST(Objects, EachCriterionPicksAWholeObject) {
   Cloud c = test::box_surface({0, 0, 1}, {0.1f, 0.1f, 1.1f}, 0.004f);  // large, far
   const std::size_t big = c.size();

@@ -23,16 +23,44 @@ Eigen::Vector3f centroid_of(const Cloud& cloud, const std::vector<std::uint32_t>
   return (sum / double(std::max<std::size_t>(idx.size(), 1))).cast<float>();
 }
 
+// The intensity a point must reach to count as of the colour: min_intensity, or, where the water
+// dims every point below it, half of what the most coloured object's brighter points reach (the
+// 90th percentile of its points' intensities) when that object stands out: at least 0.05, and
+// twice every object farther than part_reach from it (nearer ones may be its own parts). In
+// turbid water a red hot stab's points reach 0.12 and the seafloor's 0.05 at most; a scene with
+// no object of the colour (a sandy seafloor's fragments alike) gets no threshold.
+float colour_threshold(const Cloud& cloud, const Objects& o, const ObjectConfig& cfg) {
+  std::vector<float> p90(o.points.size(), 0.0f), v;
+  std::vector<Eigen::AlignedBox3f> box(o.points.size());
+  for (std::size_t k = 0; k < o.points.size(); ++k) {
+    v.clear();
+    for (const auto i : o.points[k]) v.push_back(color_intensity(cloud.colors[i], cfg.color)), box[k].extend(cloud.points[i]);
+    if (v.empty()) continue;
+    if (*std::max_element(v.begin(), v.end()) >= cfg.min_intensity) return cfg.min_intensity;
+    const auto at = v.begin() + std::ptrdiff_t(9 * v.size() / 10);
+    std::nth_element(v.begin(), at, v.end());
+    p90[k] = *at;
+  }
+  if (p90.empty()) return cfg.min_intensity;
+  const std::size_t best = std::size_t(std::max_element(p90.begin(), p90.end()) - p90.begin());
+  if (p90[best] < 0.05f) return cfg.min_intensity;
+  for (std::size_t k = 0; k < o.points.size(); ++k)
+    if (k != best && box[k].exteriorDistance(box[best]) > cfg.part_reach && 2.0f * p90[k] > p90[best])
+      return cfg.min_intensity;
+  return 0.5f * p90[best];
+}
+
 // Colour mode: the object whose coloured points are the most intense, among the objects with at
 // least a quarter of the most coloured one's coloured points.
 std::size_t by_colour(const Cloud& cloud, const Objects& o, const ObjectConfig& cfg) {
   std::vector<std::size_t> coloured(o.points.size(), 0);
   std::vector<double> intensity(o.points.size(), 0.0);
+  const float threshold = cloud.has_colors() ? colour_threshold(cloud, o, cfg) : cfg.min_intensity;
   for (std::size_t k = 0; k < o.points.size(); ++k)
     for (const auto i : o.points[k])
       if (cloud.has_colors()) {
         const float v = color_intensity(cloud.colors[i], cfg.color);
-        if (v >= cfg.min_intensity) ++coloured[k], intensity[k] += v;
+        if (v >= threshold) ++coloured[k], intensity[k] += v;
       }
   const std::size_t most = coloured.empty() ? 0 : *std::max_element(coloured.begin(), coloured.end());
   if (most == 0)
@@ -134,13 +162,25 @@ std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std:
   std::vector<std::size_t> out{selected};
   std::vector<char> taken(o.points.size(), 0), eligible(o.points.size(), 1);
   taken[selected] = 1;
-  if (cfg.by == ObjectBy::color) {
+  if (cfg.by == ObjectBy::color && cloud.has_colors()) {
+    // A part: mostly (half its points) over min_intensity, or, as the water dims every part
+    // alike, of a mean intensity at least half the selected object's. The first alone held in
+    // clear water only: in turbid water a third of a red barbell's points, and a fifth of a
+    // torque tool's, stay over min_intensity, and the parts the selected one needs were left
+    // apart (no grasp); the second alone leaves shaded parts behind in clear water.
+    std::vector<double> mean(o.points.size(), 0.0);
+    std::vector<std::size_t> coloured(o.points.size(), 0);
     for (std::size_t k = 0; k < o.points.size(); ++k) {
-      std::size_t coloured = 0;
-      for (const auto i : o.points[k])
-        coloured += cloud.has_colors() && color_intensity(cloud.colors[i], cfg.color) >= cfg.min_intensity;
-      eligible[k] = 2 * coloured >= o.points[k].size();
+      for (const auto i : o.points[k]) {
+        const float v = color_intensity(cloud.colors[i], cfg.color);
+        mean[k] += v, coloured[k] += v >= cfg.min_intensity;
+      }
+      mean[k] /= double(std::max<std::size_t>(1, o.points[k].size()));
     }
+    for (std::size_t k = 0; k < o.points.size(); ++k)
+      eligible[k] = 2 * coloured[k] >= o.points[k].size() || (mean[k] > 0.0 && 2.0 * mean[k] >= mean[selected]);
+  } else if (cfg.by == ObjectBy::color) {
+    std::fill(eligible.begin(), eligible.end(), 0);
   }
   // Each object's bounds: an object whose box lies beyond `reach` of a part's box has no point
   // within reach of it, and is not searched (on a real frame, most of the scene). The 0.1 %

@@ -39,8 +39,9 @@ std::size_t select_whole_object(const Cloud& cloud, const Objects& objects, cons
 
 // The selected object with the parts of the same object the camera sees apart (a handle under a
 // body hides the joint between them): every object within `reach` of it (nearest points) whose
-// points are mostly (>= half) of the configured colour when selecting by colour - any object
-// otherwise - joined transitively. Returns the object indices, the selected one first.
+// points are mostly (>= half) over min_intensity or whose mean intensity of the configured colour
+// is at least half the selected object's (the water dims them alike) when selecting by colour -
+// any object otherwise - joined transitively. Returns the object indices, the selected one first.
 std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& objects, std::size_t selected,
                                       const ObjectConfig& cfg, float reach);
 

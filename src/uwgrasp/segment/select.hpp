@@ -19,7 +19,10 @@ struct ObjectConfig {
   std::string color = "red";   // red, green, blue, yellow, cyan, magenta
   std::uint32_t label = 0;     // segment number, for by = label
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // camera frame, m, for by = point
-  float min_intensity = 0.15f; // a colour match needs at least this mean intensity (0-1)
+  // A colour match needs at least this intensity (0-1). Whole objects (whole = true): where the
+  // water dims every point below it, half of what the most coloured object reaches, when that
+  // object stands out (objects.cpp).
+  float min_intensity = 0.15f;
   // > 0: the object also takes every segment of the colour (intensity >= min_intensity) whose
   // centroid lies within this distance of the selected one's, m. Objects of flat faces (boxes,
   // bars) split into a segment per face under region growing; this gathers them again.
@@ -28,7 +31,9 @@ struct ObjectConfig {
   // the thesis's single segment (plus merge_radius).
   bool whole = true;
   float gap = 0.0f;  // m joining the object's points; 0: three times the cloud's point spacing
-  float part_reach = 0.05f;  // m: objects of the same colour this close join as parts of one
+  // m: objects of the same colour this close join as parts of one (by colour: mostly over
+  // min_intensity, or of at least half the selected object's mean intensity: water dims alike)
+  float part_reach = 0.05f;
 };
 
 struct SegmentInfo {
