@@ -1,0 +1,183 @@
+// Normals and curvature over pixel windows (organised.hpp): running sums where a window holds
+// whole, the listed pixels elsewhere.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+#include "uwgrasp/cloud/organised.hpp"
+#include "uwgrasp/cloud/organised_window.hpp"
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::cloud {
+
+using namespace window_detail;
+
+namespace {
+// Marks the points whose whole window is surely in play and continuous without listing it:
+// every window pixel in the frame and in play, and the window's range spread about the centre,
+// max(r_max - r_j, r_j - r_min), within the continuity allowance of a one-pixel step at r_min
+// (the least allowance any window pixel gets; 0.999 of it against rounding). A sliding max and
+// min over a dense image of ranges (+inf where no point is in play, so the max flags a gap)
+// costs a few compares per pixel where a list costs (2h + 1)^2 pixel tests (normals stage
+// 6.9 -> 5.3 ms on mOSD_learn0, with the rows skipped below). The points it leaves unmarked are listed as before.
+std::vector<char> surely_full(const PixelMap& map, const Ranges& range, std::size_t h, float depth_change) {
+  const std::size_t W = map.width, H = map.height;
+  constexpr float inf = std::numeric_limits<float>::infinity();
+  std::vector<char> full(map.pixel.size(), 0);
+  if (W < 2 * h + 1 || H < 2 * h + 1) return full;
+  std::vector<float> img(W * H, inf), lo(W * H, inf), hi(W * H, inf);
+  for (std::size_t j = 0; j < map.pixel.size(); ++j) img[map.pixel[j]] = range.r[j];
+  // Across the rows, then down the columns, over the pixels whose window lies in the frame.
+  tbb::parallel_for(std::size_t(0), H, [&](std::size_t v) {
+    const float* row = &img[v * W];
+    for (std::size_t u = h; u + h < W; ++u) {
+      float a = row[u - h], b = a;
+      for (std::size_t e = u - h + 1; e <= u + h; ++e) a = std::min(a, row[e]), b = std::max(b, row[e]);
+      lo[v * W + u] = a, hi[v * W + u] = b;
+    }
+  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, map.pixel.size(), 4096), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      const std::size_t u = map.pixel[j] % W, v = map.pixel[j] / W;
+      if (u < h || u + h >= W || v < h || v + h >= H) continue;
+      float a = inf, b = 0.0f;
+      for (std::size_t e = v - h; e <= v + h; ++e) a = std::min(a, lo[e * W + u]), b = std::max(b, hi[e * W + u]);
+      const float rj = range.r[j];
+      full[j] = b < inf && std::max(b - rj, rj - a) <= 0.999f * depth_change * a;
+    }
+  });
+  return full;
+}
+
+// The ten moments of a set of points (relative to an origin, for precision), summed so that
+// points can be added and taken away again: a window's covariance from running sums.
+struct Moments {
+  std::array<double, 10> s{};  // n, x, y, z, xx, xy, xz, yy, yz, zz
+  void add(const Eigen::Vector3d& p, double sign) {
+    const double v[10] = {1.0, p.x(), p.y(), p.z(), p.x() * p.x(), p.x() * p.y(),
+                          p.x() * p.z(), p.y() * p.y(), p.y() * p.z(), p.z() * p.z()};
+    for (int i = 0; i < 10; ++i) s[i] += sign * v[i];
+  }
+  void add(const Moments& m, double sign) {
+    for (int i = 0; i < 10; ++i) s[i] += sign * m.s[i];
+  }
+  // Covariance (eq. 4.4, divided by N).
+  Eigen::Matrix3d covariance() const {
+    const double n = s[0];
+    const Eigen::Vector3d mean(s[1] / n, s[2] / n, s[3] / n);
+    Eigen::Matrix3d c;
+    c << s[4] / n, s[5] / n, s[6] / n, s[5] / n, s[7] / n, s[8] / n, s[6] / n, s[8] / n, s[9] / n;
+    return c - mean * mean.transpose();
+  }
+};
+
+// Separable running sums over the rows [v0, v1) of the frame: column sums over the window's
+// rows roll down, and a sum over the window's columns slides along each row, so a pixel costs
+// the same whatever the window. Calls at(j, moments) for every point j whose window
+// it holds whole (full[j]: every window pixel in play and continuous).
+template <class At>
+void window_moments(const Cloud& cloud, const PixelMap& map, const std::vector<char>& full,
+                    std::size_t h, const Eigen::Vector3d& origin, std::size_t v0, std::size_t v1,
+                    At&& at) {
+  const std::size_t W = map.width, H = map.height;
+  // The rows holding a point to compute: the others only roll the column sums on (the sums of
+  // a row that is computed do not depend on which rows were), and a block without one is
+  // skipped (a frame's table rows, once the plane stage took the table).
+  std::vector<char> wanted(v1 - v0, 0);
+  for (std::size_t v = v0; v < v1; ++v)
+    for (std::size_t u = h; u + h < W && !wanted[v - v0]; ++u)
+      if (const std::int32_t j = map.slot[v * W + u]; j >= 0 && full[std::size_t(j)]) wanted[v - v0] = 1;
+  if (std::find(wanted.begin(), wanted.end(), 1) == wanted.end()) return;
+  std::vector<Moments> col(W);
+  const auto add_row = [&](std::size_t v, double sign) {
+    if (v >= H) return;  // also the rows above the frame (wrapped below zero)
+    for (std::size_t u = 0; u < W; ++u)
+      if (const std::int32_t j = map.slot[v * W + u]; j >= 0)
+        col[u].add(cloud.points[std::size_t(j)].cast<double>() - origin, sign);
+  };
+  for (std::size_t v = v0 - h; v != v0 + h; ++v) add_row(v, 1.0);
+  for (std::size_t v = v0; v < v1; ++v) {
+    add_row(v + h, 1.0);
+    if (!wanted[v - v0]) {
+      add_row(v - h, -1.0);
+      continue;
+    }
+    Moments run;
+    for (std::size_t u = 0; u < std::min(W, 2 * h + 1); ++u) run.add(col[u], 1.0);
+    for (std::size_t u = h; u + h < W; ++u) {
+      if (u > h) run.add(col[u + h], 1.0), run.add(col[u - h - 1], -1.0);
+      const std::int32_t j = map.slot[v * W + u];
+      if (j >= 0 && full[std::size_t(j)]) at(std::size_t(j), run);
+    }
+    add_row(v - h, -1.0);
+  }
+}
+}  // namespace
+
+void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg) {
+  check_window(cfg.normal_half_window);
+  if (map.pixel.size() != cloud.size())
+    throw Error("normals: the pixel map does not fit this cloud");
+  cloud.normals.resize(cloud.size());
+  cloud.curvature.resize(cloud.size());
+  if (cloud.empty()) return;
+  const auto store = [&](std::size_t j, const PointNormal& pn) {
+    cloud.normals[j] = pn.normal;
+    cloud.curvature[j] = pn.curvature;
+  };
+  // Each point's continuous window pixels; a point whose window is cut (by the frame's edge, a
+  // gap or a depth step) sums them, the others are marked for the running sums.
+  OrganisedConfig own = cfg;
+  own.half_window = cfg.normal_half_window;
+  const std::size_t whole = std::size_t(2 * own.half_window + 1) * (2 * own.half_window + 1);
+  const Ranges range(cloud.points, cloud.viewpoint);
+  std::vector<char> full = surely_full(map, range, own.half_window, own.depth_change);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1024), [&](const auto& r) {
+    std::vector<std::uint32_t> list(whole);
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      if (full[j]) continue;
+      const std::size_t n = window_list(cloud.points, map, own, range, j, list.data(), nullptr);
+      if (n == whole)
+        full[j] = 1;
+      else
+        store(j, normal_from(cloud.points, {list.data(), n}, cloud.points[j], cloud.viewpoint));
+    }
+  });
+  // The others from running sums, in fixed blocks of rows (the sums, and so the output, do not
+  // depend on the thread count).
+  const Eigen::Vector3d origin = cloud.points[cloud.size() / 2].cast<double>();
+  constexpr std::size_t kRows = 16;
+  tbb::parallel_for(std::size_t{0}, (map.height + kRows - 1) / kRows, [&](std::size_t b) {
+    window_moments(cloud, map, full, own.half_window, origin, b * kRows,
+                   std::min<std::size_t>(map.height, (b + 1) * kRows),
+                   [&](std::size_t j, const Moments& m) {
+                     store(j, normal_from_covariance(m.covariance(), cloud.points[j],
+                                                     cloud.viewpoint));
+                   });
+  });
+}
+
+std::vector<PointNormal> window_normals_of(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                                           const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint,
+                                           std::span<const std::uint32_t> which) {
+  check_window(cfg.normal_half_window);
+  if (map.pixel.size() != points.size()) throw Error("normals: the pixel map does not fit this cloud");
+  OrganisedConfig own = cfg;
+  own.half_window = cfg.normal_half_window;
+  const std::size_t whole = std::size_t(2 * own.half_window + 1) * (2 * own.half_window + 1);
+  const Ranges range(points, viewpoint);
+  std::vector<PointNormal> out(which.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, which.size(), 256), [&](const auto& r) {
+    std::vector<std::uint32_t> list(whole);
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::size_t n = window_list(points, map, own, range, which[i], list.data(), nullptr);
+      out[i] = normal_from(points, {list.data(), n}, points[which[i]], viewpoint);
+    }
+  });
+  return out;
+}
+
+}  // namespace uwgrasp::cloud

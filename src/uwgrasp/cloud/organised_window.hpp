@@ -1,0 +1,79 @@
+#pragma once
+// The pixel windows of an organised frame that organised.cpp and organised_normals.cpp share
+// (organised.hpp): iterating a point's window ring by ring, the ranges the continuity test
+// compares, and a point's continuous window list. Internal to cloud/.
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "uwgrasp/cloud/organised.hpp"
+#include "uwgrasp/core/error.hpp"
+
+namespace uwgrasp::cloud::window_detail {
+
+// Calls f(s) for every in-play pixel s at Chebyshev distance `ring` from point j's pixel
+// (row-major).
+template <class F>
+void for_each_ring_pixel(const PixelMap& map, std::size_t j, int ring, F&& f) {
+  const int W = int(map.width), H = int(map.height);
+  const int u = int(map.pixel[j] % map.width), v = int(map.pixel[j] / map.width);
+  for (int dv = -ring; dv <= ring; ++dv) {
+    const int vv = v + dv;
+    if (vv < 0 || vv >= H) continue;
+    const int step = (dv == -ring || dv == ring) ? 1 : 2 * ring;  // whole edge rows, else ends
+    for (int du = -ring; du <= ring; du += step) {
+      const int uu = u + du;
+      if (uu < 0 || uu >= W) continue;
+      const std::int32_t s = map.slot[std::size_t(vv) * map.width + std::size_t(uu)];
+      if (s >= 0) f(std::size_t(s));
+    }
+  }
+}
+
+// Calls f(s, ring) for every in-play pixel s of point j's window but its own, ring by ring
+// (Chebyshev distance 1, 2, ..., row-major within a ring), so lists start with the pixels next
+// to the point.
+template <class F>
+void for_each_window_pixel(const PixelMap& map, std::size_t j, int h, F&& f) {
+  for (int ring = 1; ring <= h; ++ring) for_each_ring_pixel(map, j, ring, [&](std::size_t s) { f(s, ring); });
+}
+
+// Each point's distance from the viewpoint, for the continuity test.
+struct Ranges {
+  std::vector<float> r;
+  Ranges(std::span<const Eigen::Vector3f> points, const Eigen::Vector3f& viewpoint)
+      : r(points.size()) {
+    for (std::size_t j = 0; j < points.size(); ++j) r[j] = (points[j] - viewpoint).norm();
+  }
+};
+
+// Point j, then the continuous in-play pixels of its window ring by ring, into idx (and their
+// squared distances into d2 unless null); returns how many.
+inline std::size_t window_list(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                        const OrganisedConfig& cfg, const Ranges& range, std::size_t j,
+                        std::uint32_t* idx, float* d2) {
+  const float rj = range.r[j];
+  std::size_t c = 0;
+  idx[c] = std::uint32_t(j);
+  if (d2) d2[c] = 0.0f;
+  ++c;
+  for_each_window_pixel(map, j, int(cfg.half_window), [&](std::size_t s, int ring) {
+    // Symmetric continuity: the allowance uses the mean of the two ranges.
+    const float rs = range.r[s];
+    if (std::abs(rs - rj) > cfg.depth_change * float(ring) * 0.5f * (rs + rj)) return;
+    idx[c] = std::uint32_t(s);
+    if (d2) d2[c] = (points[s] - points[j]).squaredNorm();
+    ++c;
+  });
+  return c;
+}
+
+inline void check_window(std::uint32_t h) {
+  if (h < 1 || h > 7)
+    throw Error("preprocess.organised.half_window must be in [1, 7], got " + std::to_string(h));
+}
+
+}  // namespace uwgrasp::cloud::window_detail
