@@ -80,6 +80,43 @@ TEST(Organised, WindowListsAreSymmetricAndStopAtDepthSteps) {
   for (const auto& [a, b] : edges) EXPECT_TRUE(edges.count({b, a})) << a << " -> " << b;
 }
 
+// Every point's list is, in order, itself and then the continuous in-play pixels of its window
+// ring by ring (row-major within a ring), as a brute force over the pixels lists them: at the
+// frame's borders (bounds tested pixel by pixel), inside it (the window's offset table), next to
+// holes and across the step, at two window sizes.
+TEST(Organised, WindowListsAreTheContinuousPixelsRingByRingAsABruteForceListsThem) {
+  Cloud c = step_frame();
+  Rng rng(7, 0);
+  for (int i = 0; i < 300; ++i) c.points[rng.below(c.size())].x() = std::nanf("");  // holes
+  std::vector<std::uint32_t> pixels;
+  const PixelMap map = full_map(c, &pixels);
+  const Cloud pts = select(c, pixels);
+  for (const std::uint32_t h : {2u, 4u}) {
+    OrganisedConfig cfg;
+    cfg.half_window = h;
+    const Neighbours nb = window_neighbours(pts.points, map, cfg, pts.viewpoint);
+    for (std::size_t j = 0; j < pts.size(); ++j) {
+      const int u = int(map.pixel[j] % kW), v = int(map.pixel[j] / kW);
+      const float rj = pts.points[j].norm();
+      std::vector<std::uint32_t> want{std::uint32_t(j)};
+      for (int ring = 1; ring <= int(h); ++ring)
+        for (int dv = -ring; dv <= ring; ++dv)
+          for (int du = -ring; du <= ring; ++du) {
+            if (std::max(std::abs(du), std::abs(dv)) != ring) continue;
+            if (u + du < 0 || u + du >= int(kW) || v + dv < 0 || v + dv >= int(kH)) continue;
+            const std::int32_t s = map.slot[std::size_t((v + dv) * int(kW) + u + du)];
+            if (s < 0) continue;
+            const float rs = pts.points[std::size_t(s)].norm();
+            if (std::abs(rs - rj) <= cfg.depth_change * float(ring) * 0.5f * (rs + rj)) want.push_back(std::uint32_t(s));
+          }
+      const auto row = nb.of(j);
+      ASSERT_EQ(std::vector<std::uint32_t>(row.begin(), row.end()), want) << "pixel " << u << ", " << v << ", h " << h;
+      for (std::size_t e = 0; e < row.size(); ++e)
+        EXPECT_EQ(nb.dists_of(j)[e], (pts.points[row[e]] - pts.points[j]).squaredNorm());
+    }
+  }
+}
+
 // Stairs across the frame: plateaus 8 columns wide (wider than the normals' 7 x 7 window), each
 // step's rise a share of the range either side of the 1 % continuity allowance (0.95 or 1.05 %,
 // alternating by row band), so the windows that hold whole, those a step cuts and those a step

@@ -36,14 +36,15 @@ Neighbours window_neighbours(std::span<const Eigen::Vector3f> points, const Pixe
                              const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint) {
   check_window(cfg.half_window);
   const Ranges range(points, viewpoint);
+  const WindowTable table(map.width, cfg.half_window);
   Neighbours nb;
   nb.k = std::size_t(2 * cfg.half_window + 1) * (2 * cfg.half_window + 1), nb.window = true;
   nb.indices.resize(points.size() * nb.k), nb.sq_dists.resize(points.size() * nb.k);
   nb.count.resize(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const auto& r) {
     for (std::size_t j = r.begin(); j != r.end(); ++j)
-      nb.count[j] = std::uint32_t(window_list(points, map, cfg, range, j, &nb.indices[j * nb.k],
-                                              &nb.sq_dists[j * nb.k]));
+      nb.count[j] = std::uint32_t(window_list(points, map, table, cfg.depth_change, range, j,
+                                              &nb.indices[j * nb.k], &nb.sq_dists[j * nb.k]));
   });
   return nb;
 }
@@ -53,6 +54,7 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
                                          std::uint32_t k) {
   check_window(half_window);
   const int widest = int(kGrowth * half_window);
+  const WindowTable table(map.width, half_window);
   std::vector<float> mean(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const auto& r) {
     std::vector<float> best(std::max<std::uint32_t>(k, 1));  // the k smallest so far, ascending
@@ -71,8 +73,10 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
       // The window, then whole rings more while it holds fewer than k pixels in play: next to a
       // hole or a removed plane the k nearest points lie further out in the image, where a k-d
       // tree search finds them.
-      for (int ring = 1; ring <= widest && (ring <= int(half_window) || n < k); ++ring)
-        for_each_ring_pixel(map, j, ring, [&](std::size_t s) { offer((points[s] - points[j]).squaredNorm()); });
+      const Eigen::Vector3f pj = points[j];
+      for_each_window_pixel(map, table, j, [&](std::size_t s, int) { offer((points[s] - pj).squaredNorm()); });
+      for (int ring = int(half_window) + 1; ring <= widest && n < k; ++ring)
+        for_each_ring_pixel(map, j, ring, [&](std::size_t s) { offer((points[s] - pj).squaredNorm()); });
       if (m == 0) {
         mean[j] = std::numeric_limits<float>::infinity();
         continue;

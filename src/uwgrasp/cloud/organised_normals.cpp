@@ -130,16 +130,16 @@ void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cf
   };
   // Each point's continuous window pixels; a point whose window is cut (by the frame's edge, a
   // gap or a depth step) sums them, the others are marked for the running sums.
-  OrganisedConfig own = cfg;
-  own.half_window = cfg.normal_half_window;
-  const std::size_t whole = std::size_t(2 * own.half_window + 1) * (2 * own.half_window + 1);
+  const std::uint32_t h = cfg.normal_half_window;
+  const std::size_t whole = std::size_t(2 * h + 1) * (2 * h + 1);
   const Ranges range(cloud.points, cloud.viewpoint);
-  std::vector<char> full = surely_full(map, range, own.half_window, own.depth_change);
+  const WindowTable table(map.width, h);
+  std::vector<char> full = surely_full(map, range, h, cfg.depth_change);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1024), [&](const auto& r) {
     std::vector<std::uint32_t> list(whole);
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       if (full[j]) continue;
-      const std::size_t n = window_list(cloud.points, map, own, range, j, list.data(), nullptr);
+      const std::size_t n = window_list(cloud.points, map, table, cfg.depth_change, range, j, list.data(), nullptr);
       if (n == whole)
         full[j] = 1;
       else
@@ -151,7 +151,7 @@ void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cf
   const Eigen::Vector3d origin = cloud.points[cloud.size() / 2].cast<double>();
   constexpr std::size_t kRows = 16;
   tbb::parallel_for(std::size_t{0}, (map.height + kRows - 1) / kRows, [&](std::size_t b) {
-    window_moments(cloud, map, full, own.half_window, origin, b * kRows,
+    window_moments(cloud, map, full, h, origin, b * kRows,
                    std::min<std::size_t>(map.height, (b + 1) * kRows),
                    [&](std::size_t j, const Moments& m) {
                      store(j, normal_from_covariance(m.covariance(), cloud.points[j],
@@ -165,15 +165,15 @@ std::vector<PointNormal> window_normals_of(std::span<const Eigen::Vector3f> poin
                                            std::span<const std::uint32_t> which) {
   check_window(cfg.normal_half_window);
   if (map.pixel.size() != points.size()) throw Error("normals: the pixel map does not fit this cloud");
-  OrganisedConfig own = cfg;
-  own.half_window = cfg.normal_half_window;
-  const std::size_t whole = std::size_t(2 * own.half_window + 1) * (2 * own.half_window + 1);
+  const std::uint32_t h = cfg.normal_half_window;
+  const std::size_t whole = std::size_t(2 * h + 1) * (2 * h + 1);
   const Ranges range(points, viewpoint);
+  const WindowTable table(map.width, h);
   std::vector<PointNormal> out(which.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, which.size(), 256), [&](const auto& r) {
     std::vector<std::uint32_t> list(whole);
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const std::size_t n = window_list(points, map, own, range, which[i], list.data(), nullptr);
+      const std::size_t n = window_list(points, map, table, cfg.depth_change, range, which[i], list.data(), nullptr);
       out[i] = normal_from(points, {list.data(), n}, points[which[i]], viewpoint);
     }
   });

@@ -41,6 +41,39 @@ void for_each_window_pixel(const PixelMap& map, std::size_t j, int h, F&& f) {
   for (int ring = 1; ring <= h; ++ring) for_each_ring_pixel(map, j, ring, [&](std::size_t s) { f(s, ring); });
 }
 
+// The pixels of a window of half width h around its centre, as offsets in the frame's row-major
+// index, in the order for_each_window_pixel visits them (ring by ring, row-major within a ring),
+// with their rings: a point whose whole window lies in the frame walks the table without a
+// bounds test per pixel (window lists 2.4 -> 1.2 ms on mOSD_learn0, outlier statistic 3.8 -> 3.4 ms).
+struct WindowTable {
+  int h = 0;
+  std::vector<std::ptrdiff_t> offset;
+  std::vector<int> ring;
+  WindowTable(std::uint32_t width, std::uint32_t half) : h(int(half)) {
+    for (int r = 1; r <= h; ++r)
+      for (int dv = -r; dv <= r; ++dv) {
+        const int step = (dv == -r || dv == r) ? 1 : 2 * r;
+        for (int du = -r; du <= r; du += step) {
+          offset.push_back(std::ptrdiff_t(dv) * std::ptrdiff_t(width) + du);
+          ring.push_back(r);
+        }
+      }
+  }
+};
+
+// for_each_window_pixel over the table's window: the same pixels in the same order.
+template <class F>
+void for_each_window_pixel(const PixelMap& map, const WindowTable& t, std::size_t j, F&& f) {
+  const std::size_t p = map.pixel[j], u = p % map.width, v = p / map.width, h = std::size_t(t.h);
+  if (u < h || u + h >= map.width || v < h || v + h >= map.height) {
+    for_each_window_pixel(map, j, t.h, f);
+    return;
+  }
+  const std::int32_t* centre = map.slot.data() + p;
+  for (std::size_t i = 0; i < t.offset.size(); ++i)
+    if (const std::int32_t s = centre[t.offset[i]]; s >= 0) f(std::size_t(s), t.ring[i]);
+}
+
 // Each point's distance from the viewpoint, for the continuity test.
 struct Ranges {
   std::vector<float> r;
@@ -53,17 +86,17 @@ struct Ranges {
 // Point j, then the continuous in-play pixels of its window ring by ring, into idx (and their
 // squared distances into d2 unless null); returns how many.
 inline std::size_t window_list(std::span<const Eigen::Vector3f> points, const PixelMap& map,
-                        const OrganisedConfig& cfg, const Ranges& range, std::size_t j,
-                        std::uint32_t* idx, float* d2) {
+                               const WindowTable& table, float depth_change, const Ranges& range,
+                               std::size_t j, std::uint32_t* idx, float* d2) {
   const float rj = range.r[j];
   std::size_t c = 0;
   idx[c] = std::uint32_t(j);
   if (d2) d2[c] = 0.0f;
   ++c;
-  for_each_window_pixel(map, j, int(cfg.half_window), [&](std::size_t s, int ring) {
+  for_each_window_pixel(map, table, j, [&](std::size_t s, int ring) {
     // Symmetric continuity: the allowance uses the mean of the two ranges.
     const float rs = range.r[s];
-    if (std::abs(rs - rj) > cfg.depth_change * float(ring) * 0.5f * (rs + rj)) return;
+    if (std::abs(rs - rj) > depth_change * float(ring) * 0.5f * (rs + rj)) return;
     idx[c] = std::uint32_t(s);
     if (d2) d2[c] = (points[s] - points[j]).squaredNorm();
     ++c;

@@ -36,48 +36,69 @@ double median(std::vector<double>& v, double top) {
   return *mid;
 }
 
-// Per range bin (key: bin index), the values collected in it.
-using Bins = std::map<long, std::vector<double>>;
-
 long bin_of(double range, double bin) { return std::lround(std::floor(range / bin)); }
 double bin_centre(long b, double bin) { return (double(b) + 0.5) * bin; }
+
+// A range bin: its index and the distances collected in it.
+struct Bin {
+  long key = 0;
+  std::vector<double> values;
+};
+
+// The band's distances grouped by range bin, bins ascending. A bin's median does not depend on
+// the order of its values.
+std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<double>& dist) {
+  std::vector<Bin> bins;
+  if (bin_key.empty()) return bins;
+  const auto [lo, hi] = std::minmax_element(bin_key.begin(), bin_key.end());
+  if (*hi - *lo >= 4096) {  // not a frame's few metres: a map of the bins in use
+    std::map<long, std::vector<double>> by_key;
+    for (std::size_t j = 0; j < bin_key.size(); ++j) by_key[bin_key[j]].push_back(dist[j]);
+    for (auto& [k, v] : by_key) bins.push_back({k, std::move(v)});
+    return bins;
+  }
+  std::vector<std::size_t> size(std::size_t(*hi - *lo + 1), 0);
+  for (const long k : bin_key) ++size[std::size_t(k - *lo)];
+  std::vector<std::size_t> slot(size.size());
+  for (std::size_t b = 0; b < size.size(); ++b) {
+    if (size[b] == 0) continue;
+    slot[b] = bins.size();
+    bins.push_back({*lo + long(b), {}});
+    bins.back().values.reserve(size[b]);
+  }
+  for (std::size_t j = 0; j < bin_key.size(); ++j) bins[slot[std::size_t(bin_key[j] - *lo)]].values.push_back(dist[j]);
+  return bins;
+}
 
 }  // namespace
 
 NoiseModel plane_noise(const Cloud& cloud, const Eigen::Vector4f& plane, float band, double bin,
                        std::size_t min_points) {
   const auto dist = [&](std::size_t i) { return std::abs(double(plane.head<3>().dot(cloud.points[i]) + plane[3])); };
-  // The band's points and their bins in parallel, then one pass into per-bin lists (a map
-  // lookup and a push_back per point took 3-4 ms on a 300k-point frame). A bin's median does
-  // not depend on the order of its values.
+  // The band's points, their bins and distances in parallel, then one pass into per-bin lists
+  // and the bins' medians in parallel (serially, a frame's floor took 2 ms of the plane stage).
   const std::vector<std::uint32_t> in_band = indices_where(cloud.size(), [&](std::size_t i) { return dist(i) <= band; });
   std::vector<long> bin_key(in_band.size());
+  std::vector<double> band_dist(in_band.size());
   tbb::parallel_for(std::size_t(0), in_band.size(), [&](std::size_t j) {
     bin_key[j] = bin_of((cloud.points[in_band[j]] - cloud.viewpoint).norm(), bin);
+    band_dist[j] = dist(in_band[j]);
   });
-  Bins bins;
-  const auto [lo, hi] = std::minmax_element(bin_key.begin(), bin_key.end());
-  if (!bin_key.empty() && *hi - *lo < 4096) {  // a frame's few metres: bins by index
-    std::vector<std::vector<double>> by_bin(std::size_t(*hi - *lo + 1));
-    std::vector<std::size_t> size(by_bin.size(), 0);
-    for (const long k : bin_key) ++size[std::size_t(k - *lo)];
-    for (std::size_t b = 0; b < by_bin.size(); ++b) by_bin[b].reserve(size[b]);
-    for (std::size_t j = 0; j < bin_key.size(); ++j) by_bin[std::size_t(bin_key[j] - *lo)].push_back(dist(in_band[j]));
-    for (std::size_t b = 0; b < by_bin.size(); ++b)
-      if (!by_bin[b].empty()) bins.emplace(*lo + long(b), std::move(by_bin[b]));
-  } else {
-    for (std::size_t j = 0; j < bin_key.size(); ++j) bins[bin_key[j]].push_back(dist(in_band[j]));
-  }
-  // sigma_b = sigma0 + sigma_k r_b^2, least squares over the bins (weighted equally).
+  std::vector<Bin> bins = group(bin_key, band_dist);
+  std::vector<double> sigma(bins.size(), 0.0);
+  tbb::parallel_for(std::size_t(0), bins.size(), [&](std::size_t b) {
+    if (bins[b].values.size() >= min_points) sigma[b] = 1.4826 * median(bins[b].values, double(band));
+  });
+  // sigma_b = sigma0 + sigma_k r_b^2, least squares over the bins (weighted equally), in order.
   Eigen::Matrix2d a = Eigen::Matrix2d::Zero();
   Eigen::Vector2d b = Eigen::Vector2d::Zero();
   NoiseModel model;
-  for (auto& [key, v] : bins) {
-    if (v.size() < min_points) continue;
-    const double r = bin_centre(key, bin), sigma = 1.4826 * median(v, double(band));
+  for (std::size_t k = 0; k < bins.size(); ++k) {
+    if (bins[k].values.size() < min_points) continue;
+    const double r = bin_centre(bins[k].key, bin);
     const Eigen::Vector2d x(1.0, r * r);
     a += x * x.transpose();
-    b += x * sigma;
+    b += x * sigma[k];
     ++model.bins;
   }
   if (model.bins < 2 || std::abs(a.determinant()) < 1e-12) return model;

@@ -72,23 +72,25 @@ void widen_to_noise(const Cloud& cur, const PlaneConfig& cfg, Preprocessed& out)
   float band = std::max(3.0f * cfg.distance, 0.02f);
   out.noise = plane_noise(cur, n, band);
   if (!out.noise.found) return;
-  // The widest noise over the inliers: the farthest inlier's (sigma grows with range).
+  // The widest noise over the inliers: the farthest inlier's (sigma0, sigma_k >= 0, so sigma
+  // never falls with range, and the square root never falls with its argument).
   const std::vector<std::uint32_t>& in = out.plane.inliers;
-  const float widest = tbb::parallel_reduce(
+  const float farthest2 = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, in.size()), 0.0f,
       [&](const auto& r, float w) {
         for (std::size_t k = r.begin(); k != r.end(); ++k)
-          w = std::max(w, float(out.noise.at((cur.points[in[k]] - cur.viewpoint).norm())));
+          w = std::max(w, (cur.points[in[k]] - cur.viewpoint).squaredNorm());
         return w;
       },
       [](float a, float b) { return std::max(a, b); });
+  const float widest = in.empty() ? 0.0f : float(out.noise.at(std::sqrt(farthest2)));
   if (5.0f * widest > band) out.noise = plane_noise(cur, n, 5.0f * widest);
   if (!out.noise.found) return;
   out.plane.inliers = indices_where(cur.size(), [&](std::size_t i) {
     const Eigen::Vector3f& p = cur.points[i];
-    const double limit =
-        std::max(double(cfg.distance), cfg.noise_sigmas * out.noise.at((p - cur.viewpoint).norm()));
-    return std::abs(n.head<3>().dot(p) + n[3]) <= limit;
+    const float d = std::abs(n.head<3>().dot(p) + n[3]);
+    if (d <= cfg.distance) return true;  // within the fixed tolerance whatever the noise
+    return d <= cfg.noise_sigmas * out.noise.at((p - cur.viewpoint).norm());
   });
 }
 
