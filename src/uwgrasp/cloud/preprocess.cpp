@@ -1,10 +1,16 @@
 #include "uwgrasp/cloud/preprocess.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <utility>
 
+#include "uwgrasp/cloud/indices.hpp"
 #include "uwgrasp/cloud/plane_stage.hpp"
 #include "uwgrasp/core/error.hpp"
 
@@ -130,22 +136,26 @@ PixelMap pixels_in_play(const Cloud& in, const std::vector<std::int32_t>& output
   return pixel_map(in.width, in.height, std::move(pixel));
 }
 
-// Invalid values (4.1.1) and the range crop in one pass that keeps each point's pixel.
+// Invalid values (4.1.1) and the range crop in one parallel pass that keeps each point's pixel.
 Cloud valid_points(const Cloud& in, const RangeConfig& range, Preprocessed& out) {
-  std::vector<std::uint32_t> kept;
-  kept.reserve(in.size());
   const float lo2 = range.min * range.min, hi2 = range.max * range.max;
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    if (!is_finite(in.points[i])) continue;
-    ++out.counts.finite;
+  const std::vector<std::uint32_t> kept = indices_where(in.size(), [&](std::size_t i) {
+    if (!is_finite(in.points[i])) return false;
     const float r2 = (in.points[i] - in.viewpoint).squaredNorm();
-    if (!range.enabled || (r2 >= lo2 && r2 <= hi2)) kept.push_back(std::uint32_t(i));
-  }
+    return !range.enabled || (r2 >= lo2 && r2 <= hi2);
+  });
+  out.counts.finite = range.enabled ? tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, in.size(), 1 << 14), std::size_t(0),
+      [&](const auto& r, std::size_t c) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) c += is_finite(in.points[i]) ? 1 : 0;
+        return c;
+      },
+      std::plus<>()) : kept.size();
   if (out.counts.finite == 0)
     throw Error("input cloud has no finite point (all x/y/z are NaN or Inf)");
   out.counts.in_range = out.counts.voxels = kept.size();
   std::fill(out.output_of_input.begin(), out.output_of_input.end(), -1);
-  for (std::size_t j = 0; j < kept.size(); ++j) out.output_of_input[kept[j]] = std::int32_t(j);
+  tbb::parallel_for(std::size_t(0), kept.size(), [&](std::size_t j) { out.output_of_input[kept[j]] = std::int32_t(j); });
   return select(in, kept);
 }
 

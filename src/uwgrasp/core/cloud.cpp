@@ -1,5 +1,8 @@
 #include "uwgrasp/core/cloud.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 #include <string>
 
@@ -34,7 +37,11 @@ static void gather(const std::vector<T>& in, std::span<const std::uint32_t> idx,
                    std::vector<T>& out) {
   if (in.empty()) return;
   out.resize(idx.size());
-  for (std::size_t i = 0; i < idx.size(); ++i) out[i] = in[idx[i]];
+  // In parallel: a frame's 300k points took ~1 ms a field on one thread. Each entry is written
+  // once, so the result does not depend on the threads.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, idx.size(), 1 << 14), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) out[i] = in[idx[i]];
+  });
 }
 
 Cloud select(const Cloud& cloud, std::span<const std::uint32_t> indices) {
