@@ -6,6 +6,7 @@
 #include "shapes.hpp"
 #include "uwgrasp/cloud/kdtree.hpp"
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/core/rng.hpp"
 #include "uwgrasp/segment/objects.hpp"
 
 namespace uwgrasp::segment {
@@ -152,6 +153,77 @@ TEST(Objects, EachCriterionPicksAWholeObject) {
   cfg.label = 1;
   EXPECT_THROW(select_whole_object(c, o, seg, cfg), Error);
   EXPECT_THROW(select_whole_object(c, Objects{}, seg, cfg), Error);
+}
+
+// Parts gathered from the selected object are those a chain of parts, each within reach of one
+// already taken, links to it - as a brute force over every pair of points finds them, in the
+// same order: chains of blobs within reach of each other and blobs anywhere, at two reaches
+// (the second so fine that the cells that spare the k-d tree its far points cover a wide box).
+TEST(Objects, PartsWithinReachAreThoseABruteForceFinds) {
+  Rng rng(11, 0);
+  const auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * float(rng.uniform()); };
+  Cloud c;
+  Objects o;
+  for (std::uint32_t b = 0; b < 100; ++b) {
+    // Two chains of ten blobs 7 cm apart (3 cm between neighbours), 30 cm apart; then blobs
+    // anywhere in a wide box.
+    const Eigen::Vector3f centre =
+        b < 20 ? Eigen::Vector3f(0.07f * float(b % 10) + (b < 10 ? 0.0f : 1.0f), 0.0f, 1.0f)
+               : Eigen::Vector3f(uniform(-1.0f, 2.0f), uniform(-1.0f, 1.0f), uniform(1.2f, 2.0f));
+    o.points.emplace_back();
+    for (int i = 0; i < 40; ++i) {
+      o.points.back().push_back(std::uint32_t(c.size()));
+      o.object_of_point.push_back(std::int32_t(b));
+      c.points.push_back(centre + Eigen::Vector3f(uniform(-0.02f, 0.02f), uniform(-0.02f, 0.02f),
+                                                  uniform(-0.02f, 0.02f)));
+    }
+  }
+  c.width = std::uint32_t(c.size()), c.height = 1;
+  ObjectConfig cfg;
+  cfg.by = ObjectBy::largest;
+  for (const float reach : {0.05f, 0.0004f}) {
+    std::vector<std::size_t> want{0};
+    std::vector<char> taken(o.points.size(), 0);
+    taken[0] = 1;
+    for (std::size_t next = 0; next < want.size(); ++next)
+      for (std::size_t k = 0; k < o.points.size(); ++k) {
+        bool near = false;
+        for (const auto i : o.points[want[next]])
+          for (const auto j : o.points[k]) near = near || (c.points[i] - c.points[j]).squaredNorm() <= reach * reach;
+        if (!taken[k] && near) taken[k] = 1, want.push_back(k);
+      }
+    EXPECT_EQ(gather_parts(c, o, 0, cfg, reach), want) << "reach " << reach;
+    if (reach > 0.01f) {
+      EXPECT_GE(want.size(), 10u);  // the chain was followed
+      EXPECT_LT(want.size(), 50u);  // and far blobs left out
+    }
+  }
+}
+
+// Two one-point parts just within and just beyond reach of each other, in each of the 26
+// directions to the cells around, from random places in the cell grid.
+TEST(Objects, APartJustWithinReachJoinsInEveryDirection) {
+  Rng rng(12, 0);
+  ObjectConfig cfg;
+  cfg.by = ObjectBy::largest;
+  const float reach = 0.05f;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (!dx && !dy && !dz) continue;
+        const Eigen::Vector3f dir = Eigen::Vector3f(float(dx), float(dy), float(dz)).normalized();
+        for (int t = 0; t < 20; ++t) {
+          const Eigen::Vector3f p(float(rng.uniform()), float(rng.uniform()), 1.0f + float(rng.uniform()));
+          for (const float share : {0.99f, 1.01f}) {
+            Cloud c;
+            c.points = {p, p + share * reach * dir};
+            c.width = 2, c.height = 1;
+            const Objects o{{0, 1}, {{0}, {1}}};
+            EXPECT_EQ(gather_parts(c, o, 0, cfg, reach).size(), share < 1.0f ? 2u : 1u)
+                << dx << " " << dy << " " << dz << " share " << share;
+          }
+        }
+      }
 }
 
 }  // namespace uwgrasp::segment

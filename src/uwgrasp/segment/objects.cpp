@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
+#include <span>
 #include <string>
 
 #include "uwgrasp/core/error.hpp"
@@ -16,6 +18,50 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
 }
+
+// The cells of side `cell` (a little over a part's reach) that hold a point of the part, over its
+// box grown by a cell: a point none of whose 27 cells around holds one has no point of the part
+// within reach, and the part's k-d tree is not built or asked for it (on the real stereo mug
+// frame gathering the parts took 6.7 -> 1.2 ms; on mOSD_learn0, whose two objects stand 5-10 cm
+// apart, 4.5 ms either way). Empty (every point may be near) when the grid would be too fine
+// for the box.
+class NearCells {
+ public:
+  NearCells(std::span<const Eigen::Vector3f> pts, const Eigen::AlignedBox3f& box, float reach)
+      : cell_(1.01f * reach), lo_(box.min().array() - cell_) {
+    if (!(reach > 0.0f) || box.isEmpty()) return;
+    const Eigen::Array3f n = ((box.max().array() + cell_ - lo_) / cell_).floor() + 1.0f;
+    if (n.prod() > float(1 << 22)) return;
+    n_ = n.cast<int>();
+    occupied_.assign(std::size_t(n_.prod()), 0);
+    for (const auto& p : pts) occupied_[index(cell_of(p))] = 1;
+  }
+  bool may_reach(const Eigen::Vector3f& p) const {
+    if (occupied_.empty()) return true;
+    const Eigen::Array3i c = cell_of(p);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const Eigen::Array3i q = c + Eigen::Array3i(dx, dy, dz);
+          if ((q >= 0).all() && (q < n_).all() && occupied_[index(q)]) return true;
+        }
+    return false;
+  }
+
+ private:
+  Eigen::Array3i cell_of(const Eigen::Vector3f& p) const {
+    // Clamped into [-1, n]: a point far outside the box lands next to it, never on a cell.
+    const Eigen::Array3f f = ((p.array() - lo_) / cell_).floor();
+    return f.max(-1.0f).min(n_.cast<float>()).cast<int>();
+  }
+  std::size_t index(const Eigen::Array3i& c) const {
+    return std::size_t((c.z() * n_.y() + c.y()) * n_.x() + c.x());
+  }
+  float cell_;
+  Eigen::Array3f lo_;
+  Eigen::Array3i n_ = Eigen::Array3i::Zero();
+  std::vector<char> occupied_;
+};
 
 Eigen::Vector3f centroid_of(const Cloud& cloud, const std::vector<std::uint32_t>& idx) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -191,17 +237,21 @@ std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std:
   for (std::size_t next = 0; next < out.size(); ++next) {
     std::vector<Eigen::Vector3f> pts;
     for (const auto i : o.points[out[next]]) pts.push_back(cloud.points[i]);
-    const cloud::KdTree tree(pts);
+    const NearCells near(pts, box[out[next]], reach);
+    std::optional<cloud::KdTree> tree;  // built when a point may be within reach
     for (std::size_t k = 0; k < o.points.size(); ++k) {
       if (taken[k] || !eligible[k] || box[k].exteriorDistance(box[out[next]]) > 1.001f * reach + 1e-6f)
         continue;
       std::uint32_t idx = 0;
       float d2 = 0;
-      for (const auto i : o.points[k])
-        if (tree.knn(cloud.points[i], 1, &idx, &d2) == 1 && d2 <= reach * reach) {
+      for (const auto i : o.points[k]) {
+        if (!near.may_reach(cloud.points[i])) continue;
+        if (!tree) tree.emplace(pts);
+        if (tree->knn(cloud.points[i], 1, &idx, &d2) == 1 && d2 <= reach * reach) {
           taken[k] = 1, out.push_back(k);
           break;
         }
+      }
     }
   }
   return out;
