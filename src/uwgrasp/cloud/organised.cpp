@@ -23,11 +23,10 @@ PixelMap pixel_map(std::uint32_t width, std::uint32_t height, std::vector<std::u
   PixelMap m;
   m.width = width, m.height = height;
   m.slot.assign(std::size_t(width) * height, -1);
-  for (std::size_t j = 0; j < pixels.size(); ++j) {
-    if (pixels[j] >= m.slot.size())
-      throw Error("pixel_map: pixel " + std::to_string(pixels[j]) + " outside the frame");
-    m.slot[pixels[j]] = static_cast<std::int32_t>(j);
-  }
+  const auto outside = std::find_if(pixels.begin(), pixels.end(), [&](std::uint32_t p) { return p >= m.slot.size(); });
+  if (outside != pixels.end())
+    throw Error("pixel_map: pixel " + std::to_string(*outside) + " outside the frame");
+  tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t j) { m.slot[pixels[j]] = static_cast<std::int32_t>(j); });
   m.pixel = std::move(pixels);
   return m;
 }

@@ -21,10 +21,12 @@ namespace {
 void remap_filtered(std::vector<std::int32_t>& map, const std::vector<std::uint32_t>& kept,
                     std::size_t previous_size) {
   if (kept.size() == previous_size) return;  // kept is ascending: nothing was dropped
+  // In parallel (each entry is written once): a frame's 300k pixels, three times per frame.
   std::vector<std::int32_t> pos(previous_size, -1);
-  for (std::size_t j = 0; j < kept.size(); ++j) pos[kept[j]] = static_cast<std::int32_t>(j);
-  for (auto& m : map)
-    if (m >= 0) m = pos[static_cast<std::size_t>(m)];
+  tbb::parallel_for(std::size_t(0), kept.size(), [&](std::size_t j) { pos[kept[j]] = static_cast<std::int32_t>(j); });
+  tbb::parallel_for(std::size_t(0), map.size(), [&](std::size_t i) {
+    if (map[i] >= 0) map[i] = pos[static_cast<std::size_t>(map[i])];
+  });
 }
 
 // Applies a filter's result to the running cloud and the input map.
@@ -50,11 +52,11 @@ void remove_plane(Cloud& cur, const PreprocessConfig& cfg, std::uint64_t seed, P
                 std::to_string(cfg.plane.distance) + " m)");
   if (!out.plane.found) return;
   std::vector<char> keep(cur.size(), 1);
-  for (auto i : out.plane.inliers) keep[i] = 0;
-  for (std::size_t i = 0; i < out.output_of_input.size(); ++i) {
+  tbb::parallel_for(std::size_t(0), out.plane.inliers.size(), [&](std::size_t k) { keep[out.plane.inliers[k]] = 0; });
+  tbb::parallel_for(std::size_t(0), out.output_of_input.size(), [&](std::size_t i) {
     const auto m = out.output_of_input[i];
     if (m >= 0 && !keep[static_cast<std::size_t>(m)]) out.plane_of_input[i] = 1;
-  }
+  });
   apply(keep_if(cur, keep), cur, out.output_of_input);
   out.counts.plane = out.plane.inliers.size();
 }
@@ -131,8 +133,9 @@ bool takes_organised_path(const Cloud& in, const PreprocessConfig& cfg) {
 PixelMap pixels_in_play(const Cloud& in, const std::vector<std::int32_t>& output_of_input,
                         std::size_t size) {
   std::vector<std::uint32_t> pixel(size);
-  for (std::size_t i = 0; i < output_of_input.size(); ++i)
+  tbb::parallel_for(std::size_t(0), output_of_input.size(), [&](std::size_t i) {
     if (output_of_input[i] >= 0) pixel[std::size_t(output_of_input[i])] = std::uint32_t(i);
+  });
   return pixel_map(in.width, in.height, std::move(pixel));
 }
 
