@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -106,17 +107,23 @@ void fill_unseen(Grid g, std::span<const V3> camera, const std::vector<int>& top
           s.cells[g.index(i, j, k)] = Occupancy::assumed;
     }
   });
+  // The visible points in parallel (serially 2.7-7 ms on real frames): a cell only ever turns
+  // from free or assumed to thin here, so which cells end thin does not depend on the order in
+  // which points reach them. Two points may reach one cell: it is read and written atomically.
   const int steps = int(std::ceil(cfg.min_thickness / s.voxel));
-  for (const V3& c : camera) {
+  tbb::parallel_for(std::size_t(0), camera.size(), [&](std::size_t n) {
+    const V3& c = camera[n];
     const V3 u = c.normalized();
     for (int t = 1; t <= steps; ++t) {
       const V3 p = (frames.level_from_camera * (c + u * (float(t) * s.voxel)).cast<double>()).cast<float>();
       const Eigen::Vector3i q = g.cell(p);
-      const Occupancy o = g.get(q.x(), q.y(), q.z());
-      if ((o == Occupancy::free || o == Occupancy::assumed) && g.inside(q.x(), q.y(), q.z()) && in_shadow(p))
-        s.cells[g.index(q.x(), q.y(), q.z())] = Occupancy::thin;
+      if (!g.inside(q.x(), q.y(), q.z())) continue;
+      std::atomic_ref<Occupancy> cell(s.cells[g.index(q.x(), q.y(), q.z())]);
+      const Occupancy o = cell.load(std::memory_order_relaxed);
+      if ((o == Occupancy::free || o == Occupancy::assumed) && in_shadow(p))
+        cell.store(Occupancy::thin, std::memory_order_relaxed);
     }
-  }
+  });
 }
 
 // Whether a mirrored voxel touches (i, j, k): the mirrored points already give the surface there,
