@@ -2,9 +2,13 @@
 // bright fragment taken for the object, one face of a box taken for the box, a handle left
 // behind - and what joins or keeps apart.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <queue>
 
 #include "shapes.hpp"
 #include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/cloud/organised.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/core/rng.hpp"
 #include "uwgrasp/segment/objects.hpp"
@@ -224,6 +228,68 @@ TEST(Objects, APartJustWithinReachJoinsInEveryDirection) {
           }
         }
       }
+}
+
+// The objects are the connected components of the neighbour graph (edges within the gap, either
+// direction), numbered by their lowest point, as a breadth-first search finds them, on one thread
+// and on two: an organised frame of blocks at five depths with holes (window lists, each pair
+// joined once) and a plane with a chain of points off its edge (k-nearest lists, not symmetric).
+TEST(Objects, ComponentsAreABreadthFirstSearchsOnAnyNumberOfThreads) {
+  Rng rng(13, 0);
+  Cloud frame;
+  frame.width = 160, frame.height = 120;
+  std::vector<std::uint32_t> pixels;
+  for (std::uint32_t v = 0; v < frame.height; ++v)
+    for (std::uint32_t u = 0; u < frame.width; ++u) {
+      const float z = 1.0f + 0.05f * float((u / 20 * 7 + v / 15 * 3) % 5);  // blocks at five depths
+      if (rng.uniform() < 0.05) continue;  // a hole
+      pixels.push_back(v * frame.width + u);
+      frame.points.emplace_back((float(u) - 80.0f) * z / 500.0f, (float(v) - 60.0f) * z / 500.0f, z);
+    }
+  const cloud::PixelMap map = cloud::pixel_map(frame.width, frame.height, pixels);
+  const cloud::Neighbours window = cloud::window_neighbours(frame.points, map, {}, Eigen::Vector3f::Zero());
+  frame.width = std::uint32_t(frame.points.size()), frame.height = 1;
+  // A plane on a 2 mm grid, then a chain of points 5 mm apart leading away from its edge: the
+  // chain's lists hold the plane's edge, the plane's 8 nearest never the chain (a pair listed by
+  // its higher index only).
+  Cloud chain = test::plane_grid(30, 0.06f, 1.0f);
+  float edge = 0.0f;
+  for (const auto& p : chain.points) edge = std::max(edge, p.x());
+  const std::size_t plane = chain.size();
+  for (int m = 0; m < 12; ++m) chain.points.emplace_back(edge + 0.0045f + 0.005f * float(m), 0.0f, 1.0f);
+  make_unorganised(chain);
+  const cloud::Neighbours knn = neighbours(chain, 8);
+  bool down = false, up = false;
+  for (std::uint32_t i = 0; i < chain.size(); ++i)
+    for (std::size_t k = 0; k < knn.of(i).size(); ++k) {
+      if (knn.dists_of(i)[k] > 0.0055f * 0.0055f) continue;
+      down = down || (i >= plane && knn.of(i)[k] < plane);
+      up = up || (i < plane && knn.of(i)[k] >= plane);
+    }
+  ASSERT_TRUE(down && !up);
+  for (const auto& [c, nb, gap] : {std::tuple<const Cloud*, cloud::Neighbours, float>{&frame, window, 0.006f},
+                                   {&chain, knn, 0.0055f}}) {
+    std::vector<std::vector<std::uint32_t>> adjacent(c->size());
+    for (std::uint32_t i = 0; i < c->size(); ++i)
+      for (std::size_t k = 0; k < nb.of(i).size(); ++k)
+        if (nb.dists_of(i)[k] <= gap * gap) adjacent[i].push_back(nb.of(i)[k]), adjacent[nb.of(i)[k]].push_back(i);
+    std::vector<std::vector<std::uint32_t>> want;
+    std::vector<char> seen(c->size(), 0);
+    for (std::uint32_t s = 0; s < c->size(); ++s) {
+      if (seen[s]) continue;
+      std::vector<std::uint32_t> part{s};
+      seen[s] = 1;
+      for (std::size_t h = 0; h < part.size(); ++h)
+        for (const auto q : adjacent[part[h]])
+          if (!seen[q]) seen[q] = 1, part.push_back(q);
+      std::sort(part.begin(), part.end());
+      if (part.size() >= 10) want.push_back(part);
+    }
+    ASSERT_FALSE(want.empty());
+    EXPECT_EQ(connected_objects(*c, nb, gap, 10).points, want);
+    const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    EXPECT_EQ(connected_objects(*c, nb, gap, 10).points, want);
+  }
 }
 
 }  // namespace uwgrasp::segment

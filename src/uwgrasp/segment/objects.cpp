@@ -1,7 +1,11 @@
 #include "uwgrasp/segment/objects.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -14,9 +18,29 @@
 namespace uwgrasp::segment {
 
 namespace {
+// A concurrent union-find: a root is linked under a smaller one by compare-and-swap, so along
+// any path the indices fall (no cycles), and a find halves its path (a point's parent is only
+// ever moved to one of its ancestors). Which points end up together does not depend on the
+// order of the joins.
 std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
+  while (true) {
+    std::atomic_ref<std::uint32_t> up(parent[i]);
+    const std::uint32_t p = up.load(std::memory_order_relaxed);
+    if (p == i) return i;
+    const std::uint32_t gp = std::atomic_ref<std::uint32_t>(parent[p]).load(std::memory_order_relaxed);
+    if (gp != p) up.store(gp, std::memory_order_relaxed);
+    i = gp;
+  }
+}
+
+void unite(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_t b) {
+  while (true) {
+    a = find(parent, a), b = find(parent, b);
+    if (a == b) return;
+    if (a < b) std::swap(a, b);
+    std::uint32_t expected = a;  // a is still a root, or another join got there first: again
+    if (std::atomic_ref<std::uint32_t>(parent[a]).compare_exchange_strong(expected, b, std::memory_order_relaxed)) return;
+  }
 }
 
 // The cells of side `cell` (a little over a part's reach) that hold a point of the part, over its
@@ -130,22 +154,26 @@ Objects connected_objects(const Cloud& cloud, const cloud::Neighbours& nb, float
   std::vector<std::uint32_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0u);
   const float g2 = gap * gap;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto idx = nb.of(i);
-    const auto d2 = nb.dists_of(i);
-    for (std::size_t k = 0; k < idx.size(); ++k)
-      if (d2[k] <= g2) {
-        const std::uint32_t a = find(parent, std::uint32_t(i)), b = find(parent, idx[k]);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the lowest index roots: deterministic
-      }
-  }
+  // The points' joins in parallel (serially 6 ms on the real stereo mug frame); a window list's
+  // pair is joined once, from its lower index (the lists are symmetric).
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 2048), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const auto idx = nb.of(i);
+      const auto d2 = nb.dists_of(i);
+      for (std::size_t k = 0; k < idx.size(); ++k)
+        if (d2[k] <= g2 && (!nb.window || idx[k] > i)) unite(parent, std::uint32_t(i), idx[k]);
+    }
+  });
+  std::vector<std::uint32_t> root(n);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { root[i] = find(parent, std::uint32_t(i)); });
   std::vector<std::uint32_t> size(n, 0);
-  for (std::size_t i = 0; i < n; ++i) ++size[find(parent, std::uint32_t(i))];
+  for (std::size_t i = 0; i < n; ++i) ++size[root[i]];
+  // Objects numbered by their lowest point index: the same output whatever the order of joins.
   Objects out;
   out.object_of_point.assign(n, -1);
   std::vector<std::int32_t> number(n, -1);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t r = find(parent, std::uint32_t(i));
+    const std::uint32_t r = root[i];
     if (size[r] < min_points) continue;
     if (number[r] < 0) number[r] = std::int32_t(out.points.size()), out.points.emplace_back();
     out.object_of_point[i] = number[r];
