@@ -67,8 +67,12 @@ float back_off(const ObjectShape& shape, const V3& centre, const V3& x, const V3
   const float step = 0.5f * shape.voxel;
   const int steps = int(2.0f * palm_offset / step);
   int reach = -1;  // in steps; each line is scanned from the far end down to the reach so far
-  for (const float a : {-1.0f, -0.5f, 0.0f, 0.5f, 1.0f})
-    for (const float b : {-1.0f, 0.0f, 1.0f}) {
+  // The centre line first, the corners last: the reach is the furthest over all lines whatever
+  // their order, and a line through the object's middle usually reaches furthest, so the others
+  // scan less (voxel lookups 2.8x fewer on mOSD_learn0, 3.6x on the mug, where back_off was
+  // half the sample stage's work).
+  for (const float a : {0.0f, -0.5f, 0.5f, -1.0f, 1.0f})
+    for (const float b : {0.0f, -1.0f, 1.0f}) {
       const V3 base = centre + a * half_width * y + b * half_height * z;
       const StepRange r = steps_in_grid(shape, base, -step * x, reach + 1, steps);
       for (int i = r.last; i >= r.first; --i)
