@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <cmath>
 #include <exception>
 #include <functional>
@@ -60,14 +61,14 @@ struct Model {
   LevelCloud core;  // the visible points and the shape's thin core (empty with the shape off)
 };
 Model object_model(const LevelCloud& l, const Cloud& object, const Gripper& g, const GraspConfig& cfg,
-                   const Surroundings* around, ObjectGrasps& out) {
+                   const Surroundings* around, ObjectGrasps& out, const cloud::KdTree* level_tree) {
   Model m{l, g, around ? level_plane(*around, out.frames) : std::nullopt, {}};
   if (!cfg.shape.enabled) return m;
   std::optional<SceneSight> sight;
   if (around != nullptr)
     sight = SceneSight{around->points, around->has_plane ? std::optional(around->plane) : std::nullopt};
   out.shape = complete_shape(l.points, object.points, out.frames, m.floor, cfg.shape, l.normals,
-                             sight ? &*sight : nullptr);
+                             sight ? &*sight : nullptr, level_tree);
   const auto append = [](LevelCloud& to, const std::vector<Eigen::Vector3f>& p, const std::vector<Eigen::Vector3f>& n) {
     to.points.insert(to.points.end(), p.begin(), p.end());
     to.normals.insert(to.normals.end(), n.begin(), n.end());
@@ -181,10 +182,15 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   ObjectGrasps out;
   out.frames = make_frames(cfg.frames);
   const LevelCloud l = to_level(object, out.frames);
-  out.max_inliers = max_inliers(cfg.score, g, l.points, leaf);
+  // One k-d tree over the object in L for the median spacing and the symmetry planes' alignment
+  // (each built its own: 1.3 ms a tree on a mOSD object, 4 ms on the mug frame's).
+  std::optional<cloud::KdTree> level_tree;
+  const bool spacing = cfg.score.inlier_mode != InlierMode::fixed && !(leaf > 0.0);
+  if (spacing || (cfg.shape.enabled && cfg.shape.symmetry.enabled && around != nullptr)) level_tree.emplace(l.points);
+  out.max_inliers = max_inliers(cfg.score, g, l.points, leaf, level_tree ? &*level_tree : nullptr);
   timer.start("sample");  // first, so the stages print in pipeline order
   timer.start("shape");
-  const Model model = object_model(l, object, g, cfg, around, out);
+  const Model model = object_model(l, object, g, cfg, around, out, level_tree ? &*level_tree : nullptr);
   timer.start("check");   // the hierarchy (and the occlusion map beside it) is part of the check's cost
   Shadow shadow;
   const PointBvh bvh = build_inputs(model.cloud, object, model.gripper, cfg.occlusion, shadow);

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 
 #include "uwgrasp/cloud/kdtree.hpp"
@@ -108,8 +109,9 @@ std::vector<Grasp> score_and_rank(std::span<const Eigen::Vector3f> points,
 
 namespace {
 // Median distance to the nearest neighbour: the cloud's own "voxel size" when none was set.
-double median_spacing(std::span<const Eigen::Vector3f> pts) {
-  const cloud::KdTree tree(pts);
+double median_spacing(std::span<const Eigen::Vector3f> pts, const cloud::KdTree* shared) {
+  std::optional<cloud::KdTree> own;
+  const cloud::KdTree& tree = shared ? *shared : own.emplace(pts);
   const cloud::Neighbours nb = cloud::knn_all(tree, pts, 2);
   std::vector<float> d;
   for (std::size_t i = 0; i < pts.size(); ++i)
@@ -120,9 +122,10 @@ double median_spacing(std::span<const Eigen::Vector3f> pts) {
 }
 }  // namespace
 
-double max_inliers(const ScoreConfig& s, const Gripper& g, std::span<const Eigen::Vector3f> points, double leaf) {
+double max_inliers(const ScoreConfig& s, const Gripper& g, std::span<const Eigen::Vector3f> points, double leaf,
+                   const cloud::KdTree* tree) {
   if (s.inlier_mode == InlierMode::fixed) return s.max_inliers;
-  if (!(leaf > 0.0)) leaf = median_spacing(points);
+  if (!(leaf > 0.0)) leaf = median_spacing(points, tree);
   if (!(leaf > 0.0)) throw Error("derived maximum inliers: the object's points all coincide");
   const Eigen::Vector3f size = g.closing.hi - g.closing.lo;
   return s.inlier_mode == InlierMode::volume ? max_inliers_volume(size, leaf)

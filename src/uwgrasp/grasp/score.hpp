@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "uwgrasp/cloud/kdtree.hpp"
 #include "uwgrasp/core/pose.hpp"
 #include "uwgrasp/grasp/feasibility.hpp"
 #include "uwgrasp/grasp/frames.hpp"
@@ -101,8 +102,9 @@ Grasp score_candidate(std::span<const Eigen::Vector3f> points,
 double robust_total(const Grasp& g);
 
 // q_i's maximum (6.5): s.max_inliers when fixed, else derived from the gripper's closing region
-// and the voxel size `leaf` (the points' median spacing when 0). Throws Error when the points
-// all coincide.
-double max_inliers(const ScoreConfig& s, const Gripper& g, std::span<const Eigen::Vector3f> points, double leaf);
+// and the voxel size `leaf` (the points' median spacing when 0, searched in `tree` when given: a
+// k-d tree over `points`). Throws Error when the points all coincide.
+double max_inliers(const ScoreConfig& s, const Gripper& g, std::span<const Eigen::Vector3f> points, double leaf,
+                   const cloud::KdTree* tree = nullptr);
 
 }  // namespace uwgrasp::grasp

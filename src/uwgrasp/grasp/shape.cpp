@@ -197,7 +197,8 @@ std::size_t ObjectShape::count(Occupancy o) const { return std::size_t(std::coun
 ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
                            std::span<const Eigen::Vector3f> camera, const Frames& frames,
                            const std::optional<FloorPlane>& floor, const ShapeConfig& cfg,
-                           std::span<const Eigen::Vector3f> normals, const SceneSight* scene) {
+                           std::span<const Eigen::Vector3f> normals, const SceneSight* scene,
+                           const cloud::KdTree* level_tree) {
   if (level.empty() || level.size() != camera.size())
     throw Error("object shape: the object has no points (or the level and camera points differ)");
   if (!(cfg.voxel > 0.0f) || !(cfg.resolution > 0.0f))
@@ -212,7 +213,7 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
     const float tolerance = cfg.symmetry.tolerance + cfg.symmetry.noise_sigmas * s.noise;
     const SceneView view = make_scene_view(scene->points, scene->floor, camera_from_level, cfg.resolution, level,
                                            0.5f * tolerance);
-    s.planes = find_symmetry(level, view, s.noise, cfg.symmetry);
+    s.planes = find_symmetry(level, view, s.noise, cfg.symmetry, level_tree);
     mirror_points(level, normals, s.planes, view, tolerance, mirrored, mirrored_normals);
   }
   size_grid(s, level, mirrored, floor, cfg);

@@ -111,7 +111,7 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
                            std::span<const Eigen::Vector3f> camera, const Frames& frames,
                            const std::optional<FloorPlane>& floor, const ShapeConfig& cfg,
                            std::span<const Eigen::Vector3f> normals = {},
-                           const SceneSight* scene = nullptr);
+                           const SceneSight* scene = nullptr, const cloud::KdTree* level_tree = nullptr);
 
 // The surface's noise: the median RMS distance of a point's k nearest neighbours from their
 // least-squares plane (on up to `samples` points). 0 for fewer than k points.

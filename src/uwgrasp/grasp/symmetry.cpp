@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <utility>
 
 #include "uwgrasp/cloud/kdtree.hpp"
@@ -99,7 +100,7 @@ bool acceptable(const MirrorPlane& p, const SymmetryConfig& cfg) {
 }  // namespace
 
 std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, const SceneView& view,
-                                       float noise, const SymmetryConfig& cfg) {
+                                       float noise, const SymmetryConfig& cfg, const cloud::KdTree* shared) {
   if (!cfg.enabled || level.size() < 10 || !(cfg.angle_step > 0.0f) || !(cfg.offset_step > 0.0f)) return {};
   std::vector<V3> sample;
   const std::size_t stride = std::max<std::size_t>(1, level.size() / std::max<std::uint32_t>(cfg.samples, 1));
@@ -143,7 +144,8 @@ std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, c
     return upright_best.valid && tilted.plane.score < upright_best.plane.score + cfg.tilt_margin ? upright_best : tilted;
   };
   // Each plane aligned to the mirror pairs it makes, kept aligned unless that scores worse.
-  const cloud::KdTree tree(level);
+  std::optional<cloud::KdTree> own;
+  const cloud::KdTree& tree = shared ? *shared : own.emplace(level);
   const auto aligned = [&](const Scored& s) {
     if (!s.valid) return s;
     const MirrorPlane a = align(s.plane, sample, tree, view, search.tolerance);

@@ -24,6 +24,7 @@
 #include <span>
 #include <vector>
 
+#include "uwgrasp/cloud/kdtree.hpp"
 #include "uwgrasp/core/pose.hpp"
 #include "uwgrasp/grasp/sight.hpp"
 
@@ -63,9 +64,11 @@ struct MirrorPlane {
 
 // The object's symmetry planes (none, one, or two perpendicular ones; about perpendicular with
 // `perpendicular` off), best first.
-// `level`: the object's points in L. `noise`: its surface noise (sigma, m). Deterministic.
+// `level`: the object's points in L (`tree`, when given: a k-d tree over them). `noise`: its
+// surface noise (sigma, m). Deterministic.
 std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, const SceneView& view,
-                                       float noise, const SymmetryConfig& cfg);
+                                       float noise, const SymmetryConfig& cfg,
+                                       const cloud::KdTree* tree = nullptr);
 
 // The points mirrored about the planes (and about both, for two), with their normals, kept
 // where the camera could not have seen them (hidden): the object's completed back.
