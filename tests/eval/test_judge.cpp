@@ -273,4 +273,14 @@ TEST(Exists, AFloatingCubeHasAGraspAFlatSlabOnTheFloorNone) {
   EXPECT_TRUE(find_any_grasp(raised, camera_along_x(), kGripper, 0).exists);
   EXPECT_THROW(find_any_grasp(slab, camera_along_x(), kGripper, 3), Error);
 }
+
+// A bar 1 cm tall lying on the floor is held across its 3 cm width only with the contacts near
+// the fingertips: with them in the middle half of the pads (the search before) the fingers reach
+// under the floor, and no grasp was found below 1.2 cm.
+TEST(Exists, ABarLyingFlatIsHeldNearTheFingertips) {
+  const sim::World bar(scene({box("bar", V3(0.03, 0.2, 0.01), at(V3(0, 0, 0.005)))}, true));
+  const Existence e = find_any_grasp(bar, camera_along_x(), kGripper, 0);
+  ASSERT_TRUE(e.exists);
+  EXPECT_TRUE(judge(bar, camera_along_x(), kGripper, e.example, 0).holds(0.4));
+}
 }  // namespace

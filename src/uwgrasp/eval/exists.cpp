@@ -15,7 +15,7 @@ namespace {
 using V3 = Eigen::Vector3d;
 
 // The gripper frames tried for one antipodal pair: approaches turned about the closing axis,
-// the contacts at the pads' centre and towards either end.
+// the contacts at the pads' centre and towards either end (exists.hpp).
 std::vector<Pose> poses_for(const V3& near, const V3& y, double width, const grasp::Gripper& g,
                             const ExistenceConfig& cfg) {
   std::vector<Pose> out;
@@ -25,7 +25,7 @@ std::vector<Pose> poses_for(const V3& near, const V3& y, double width, const gra
   for (std::uint32_t a = 0; a < cfg.approaches; ++a) {
     const V3 x = Eigen::AngleAxisd(2.0 * std::numbers::pi * a / cfg.approaches, y) * x0;
     for (std::uint32_t d = 0; d < cfg.depths; ++d) {
-      const double along = cfg.depths > 1 ? half * (-0.5 + double(d) / double(cfg.depths - 1)) : 0.0;
+      const double along = cfg.depths > 1 ? 0.95 * half * (-1.0 + 2.0 * double(d) / double(cfg.depths - 1)) : 0.0;
       Pose T = Pose::Identity();
       T.linear().col(0) = x, T.linear().col(1) = y, T.linear().col(2) = x.cross(y);
       T.translation() = near + 0.5 * width * y - along * x;

@@ -5,7 +5,10 @@
 // search: antipodal pairs on the target's true surface (a point drawn by area, the closing axis
 // along its inward normal, the far side where that axis leaves the object), each tried from
 // `approaches` directions around the closing axis and at `depths` positions of the contacts
-// along the fingers.
+// along the fingers, from near their base to near their tips (to 95 % of the half length either
+// way of the pads' centre). Contacts within the middle half of the pads only missed every grasp
+// of a T-bar lying flat, whose holds close near the fingertips: a dense search (1,500 points,
+// 24 approaches) found none that way and 1,329 along the whole pad.
 #include <cstdint>
 
 #include "uwgrasp/eval/judge.hpp"
@@ -15,7 +18,7 @@ namespace uwgrasp::eval {
 struct ExistenceConfig {
   std::uint32_t points = 1000;
   std::uint32_t approaches = 16;
-  std::uint32_t depths = 5;
+  std::uint32_t depths = 11;
   double mu = 0.4;
   std::uint64_t seed = 1;
 };
