@@ -113,31 +113,42 @@ std::size_t single(const std::string& path, const Header& h, const char* key) {
 }
 }  // namespace
 
-// PCL 1.13's header reader goes on after the DATA line: it skips empty lines and reads the next
-// one as a header line when it starts with '#' or a header key (by prefix), so binary data that
-// happens to begin "COLUMNS" or "FIELDS" is parsed as fields (a 100 TB allocation, found by
-// fuzz/). Such data is refused; the chance that real data begins so is negligible.
-void check_body_start(const std::string& path, std::ifstream& f, std::streamoff data_offset) {
-  std::string line;
+namespace {
+// PCL 1.13's header reader goes on after the DATA line: it skips empty lines, comments ('#') and
+// VERSION lines, and parses the next line as a header line when it starts with a header key (by
+// prefix). Binary data that happens to begin "COLUMNS" or "FIELDS", at once or after such lines,
+// is then parsed as fields (a 100 TB allocation, found by fuzz/). Returns that line's first word,
+// or "" when PCL reads the data where it starts (a body beginning '#', one binary file in 256, does).
+std::string header_like_body(std::ifstream& f, std::streamoff data_offset) {
   f.clear();
   f.seekg(data_offset);
-  while (std::getline(f, line) && line.empty()) {
+  std::string line, found;
+  while (found.empty() && std::getline(f, line)) {
+    if (line.empty()) continue;
+    const Words w = split(line);
+    if (w.empty()) break;
+    const std::string& t = w[0];
+    if (t[0] == '#' || t.rfind("VERSION", 0) == 0) continue;
+    for (const char* k : {"FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT", "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"})
+      if (t.rfind(k, 0) == 0) found = t;
+    break;
   }
   f.clear();
   f.seekg(data_offset);  // the readers below start at the data
-  const Words w = split(line);
-  if (w.empty()) return;
-  const std::string& t = w[0];
-  bool header_like = t[0] == '#';
-  for (const char* k : {"VERSION", "FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT", "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"})
-    header_like = header_like || t.rfind(k, 0) == 0;
-  if (header_like) bad(path, "the data after DATA begins like a header line ('" + printable(t) + "')");
+  return found;
+}
+}  // namespace
+
+bool pcd_body_reads_as_header(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return !header_like_body(f, read_header(path, f).data_offset).empty();
 }
 
 void check_pcd(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   const Header h = read_header(path, f);
-  check_body_start(path, f, h.data_offset);
+  const std::string t = header_like_body(f, h.data_offset);
+  if (!t.empty()) bad(path, "the data after DATA begins like a header line ('" + printable(t) + "')");
   std::size_t point_size = 0;
   check_fields(path, h, point_size);
   const std::size_t width = single(path, h, "WIDTH"), height = single(path, h, "HEIGHT");

@@ -35,6 +35,30 @@ void check_readable(const std::string& path) {
   if (!f) throw Error(path + ": cannot open for reading");
   if (fs::file_size(path, ec) == 0) throw Error(path + ": file is empty");
 }
+// ASCII at 9 significant digits reads back every float bit for bit (PCL's default 8 does not).
+int write_as(const std::string& tmp, const pcl::PCLPointCloud2& blob, const Eigen::Vector4f& origin,
+             const Eigen::Quaternionf& orient, PcdFormat format) {
+  pcl::PCDWriter w;
+  switch (format) {
+    case PcdFormat::ascii: return w.writeASCII(tmp, blob, origin, orient, 9);
+    case PcdFormat::binary: return w.writeBinary(tmp, blob, origin, orient);
+    case PcdFormat::binary_compressed: return w.writeBinaryCompressed(tmp, blob, origin, orient);
+  }
+  return -1;
+}
+
+// Binary data can begin like a header line, which PCL would parse as one (header_check.cpp): a
+// file is then written in the next encoding, binary -> binary_compressed -> ascii, so that every
+// cloud written reads back.
+int write_pcd(const std::string& tmp, const pcl::PCLPointCloud2& blob, const Eigen::Vector4f& origin,
+              const Eigen::Quaternionf& orient, PcdFormat format) {
+  int rc = write_as(tmp, blob, origin, orient, format);
+  while (rc >= 0 && format != PcdFormat::ascii && pcd_body_reads_as_header(tmp)) {
+    format = format == PcdFormat::binary ? PcdFormat::binary_compressed : PcdFormat::ascii;
+    rc = write_as(tmp, blob, origin, orient, format);
+  }
+  return rc;
+}
 }  // namespace
 
 Cloud load_cloud(const std::string& path) {
@@ -96,15 +120,8 @@ void save_cloud(const std::string& path, const Cloud& cloud, PcdFormat format) {
     } else if (ext == ".ply") {
       rc = pcl::PLYWriter().write(tmp, blob, origin, orient, true, false);
     } else {
-      pcl::PCDWriter w;
-      switch (format) {
-        case PcdFormat::ascii: rc = w.writeASCII(tmp, blob, origin, orient, 8); break;
-        case PcdFormat::binary: rc = w.writeBinary(tmp, blob, origin, orient); break;
-        case PcdFormat::binary_compressed:
-          rc = cloud.empty() ? w.writeBinary(tmp, blob, origin, orient)
-                             : w.writeBinaryCompressed(tmp, blob, origin, orient);
-          break;
-      }
+      rc = write_pcd(tmp, blob, origin, orient, 
+                     cloud.empty() && format == PcdFormat::binary_compressed ? PcdFormat::binary : format);
     }
     if (rc < 0) throw Error(path + ": cannot write" + reason());
   });
