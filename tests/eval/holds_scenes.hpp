@@ -5,9 +5,11 @@
 #include <cstdint>
 #include <string>
 
+#include "uwgrasp/core/error.hpp"
 #include "uwgrasp/eval/evaluate.hpp"
 #include "uwgrasp/grasp/detector.hpp"
 #include "uwgrasp/io/config.hpp"
+#include "uwgrasp/sim/builtin_scenes.hpp"
 #include "uwgrasp/sim/render.hpp"
 #include "uwgrasp/sim/scene.hpp"
 
@@ -32,6 +34,15 @@ struct Judged {
 // judges every returned grasp.
 Judged detect_and_judge(const sim::Scene& scene, io::Config cfg, std::uint64_t seed = 1,
                         bool search_exists = true, const std::string& water = "");
+
+// `var` = the built-in mesh scene `name`; the test skips when the shared meshes are absent.
+#define UWGRASP_MESH_SCENE_OR_SKIP(var, name)                            \
+  sim::Scene var;                                                      \
+  try {                                                                \
+    var = sim::builtin_scene(name);                                    \
+  } catch (const Error& e) {                                           \
+    GTEST_SKIP() << "shared data not found: " << e.what();             \
+  }
 
 // Whether the best-ranked grasp holds at mu 0.4.
 bool top1_holds(const Judged& j);

@@ -47,12 +47,7 @@ TEST(HoldsInTurbidWater, TheBarbellsPartsJoinAsTheWaterDimsThemAlike) {
 // foot, seen apart from the body, is as grey as the seafloor in this water and is not taken:
 // 3,292 of 5,447 pixels, against 96 % in clear water.)
 TEST(HoldsInTurbidWater, ADimRedObjectIsStillTheObject) {
-  sim::Scene s;
-  try {
-    s = sim::builtin_scene("hot_stab");
-  } catch (const Error& e) {
-    GTEST_SKIP() << "shared data not found: " << e.what();
-  }
+  UWGRASP_MESH_SCENE_OR_SKIP(s, "hot_stab");
   const Judged j = detect_and_judge(s, io::Config{}, 1, false, "turbid");
   const auto [seen, red] = seen_and_red(j.frame, 0);
   ASSERT_GT(seen, 2000u);

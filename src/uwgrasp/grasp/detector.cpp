@@ -199,7 +199,7 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   const Surroundings scene = around ? *around : Surroundings{object.points};
   const Gate gate({bvh, model.gripper, g, out.shape, out.frames, cfg.occlusion.enabled ? &shadow : nullptr,
                    cfg.occlusion, cfg.reach, scene});
-  const SampleInputs inputs{l, model.cloud, out.shape, model.gripper, gate};
+  const SampleInputs inputs{l, model.cloud, out.shape, model.gripper, gate, model.floor};
   if (cfg.sampler.kind == SamplerKind::automatic)
     out.sampler = run_auto(inputs, cfg, out.frames, bvh, seed, timer, pool);
   else

@@ -4,10 +4,30 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace uwgrasp::grasp {
 
 namespace {
+// How far c must back off along its approach x so that every corner of the gripper's solids is
+// `clearance` above the seafloor: a bar lying on it is then held near the fingertips rather than
+// drawn with them at the floor, where the smallest error of the vehicle's pose drives them into
+// it (the robust share of such grasps was 0). 0 when the gripper is clear, or when backing off
+// hardly lifts it (an approach within ~12 degrees of level): the checks then decide.
+float floor_lift(const Gripper& g, const Eigen::Vector4f& floor, float clearance, const Candidate& c) {
+  const Eigen::Vector3f n = floor.head<3>();
+  const float rise = -n.dot(c.rotation.col(0));  // height gained per metre backed off
+  if (rise < 0.2f) return 0.0f;
+  float lowest = std::numeric_limits<float>::max();
+  for (const Box& b : g.solids)
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector3f q((k & 1) ? b.hi.x() : b.lo.x(), (k & 2) ? b.hi.y() : b.lo.y(),
+                              (k & 4) ? b.hi.z() : b.lo.z());
+      lowest = std::min(lowest, n.dot(c.rotation * q + c.position) + floor[3]);
+    }
+  return std::max(0.0f, (clearance - lowest) / rise);
+}
+
 std::vector<Candidate> draw(SamplerKind kind, const SampleInputs& in, const GraspConfig& cfg,
                             const Frames& f, std::uint64_t seed, std::uint32_t count,
                             std::uint32_t first, Drawn& d) {
@@ -26,9 +46,13 @@ std::vector<Candidate> draw(SamplerKind kind, const SampleInputs& in, const Gras
       const std::uint32_t enough = cfg.sampler.enough == 0 ? count : cfg.sampler.enough;
       d.checks.resize(count);
       const ClearFn clear = [&](const Candidate& c, std::uint32_t slot) { return in.gate.passes(c, &d.checks[slot]); };
+      const auto clearance = float(cfg.sampler.floor_clearance);
+      LiftFn lift;
+      if (in.floor && clearance > 0.0f)
+        lift = [&](const Candidate& c, float share) { return floor_lift(in.gripper, *in.floor, share * clearance, c); };
       return sample_antipodal(in.model.points, in.model.normals, in.shape, cfg.sampler, R_BG,
                               max_grasp_width(in.gripper), -palm.hi.x(), palm.half().y(),
-                              palm.half().z(), seed, count, first, clear, enough, &d.passed);
+                              palm.half().z(), seed, count, first, clear, enough, &d.passed, lift);
     }
     default: return sample_normal(l.points, cfg.sampler, R_BG, seed, count, first);
   }

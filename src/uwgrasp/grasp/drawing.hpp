@@ -3,6 +3,7 @@
 // sampler, or the automatic choice among them (thesis 9.3), each draw's candidates checked
 // against the gripper unless the gate already checked them while drawing - into one pool.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "uwgrasp/core/timer.hpp"
@@ -24,6 +25,7 @@ struct SampleInputs {
   const ObjectShape& shape;
   const Gripper& gripper;  // as checked (grown by the margin)
   const Gate& gate;  // every check before scoring
+  const std::optional<Eigen::Vector4f>& floor;  // the seafloor in L, when the scene has one
 };
 
 // The candidates drawn and, for those that passed every check while drawn (only the antipodal

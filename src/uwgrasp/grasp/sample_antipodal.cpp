@@ -21,6 +21,7 @@ namespace uwgrasp::grasp {
 
 namespace {
 constexpr std::uint64_t kAntipodal = 5ULL << 40;
+constexpr std::uint64_t kLiftStream = 0x9E3779B97F4A7C15ULL;
 using V3 = Eigen::Vector3f;
 
 // How far the model reaches from p along u (unit) before `gap` of free space, up to `limit`.
@@ -113,6 +114,9 @@ struct Draw {
   const std::vector<std::uint32_t>& focus;  // eligible points near earlier blocks' passes
   const double& focus_share;                 // the share of draws that start from them
   const ClearFn& clear;
+  const LiftFn& lift;
+  std::uint64_t seed;
+  std::uint32_t first;
 
   // `tries` counts the calls of `clear`; `slot` is the candidate's index in the output.
   bool operator()(Rng& rng, Candidate& c, std::uint32_t slot, std::uint32_t& tries) const {
@@ -129,7 +133,11 @@ struct Draw {
       const float width = extent_along(shape, points[j], y, max_width, gap);
       const V3 x = approach(rng, y);
       if (x.isZero()) continue;
-      passed = turn(points[j] + 0.5f * width * y, x, y, j, c, slot, tries);
+      // The share of the floor clearance this draw keeps, from a stream of its own: where the
+      // floor is far, the draws are those drawn without it.
+      const std::uint64_t stream = (std::uint64_t(first + slot) << 3) | std::uint64_t(attempt);
+      const float lift_to = lift ? float(Rng(seed ^ kLiftStream, stream).uniform()) : 1.0f;
+      passed = turn(points[j] + 0.5f * width * y, x, y, j, lift_to, c, slot, tries);
       if (clear ? passed : width <= max_width) break;
     }
     return passed;
@@ -155,20 +163,27 @@ struct Draw {
   // (nearest first, none from below), the first that passes `clear` (without one: whose palm
   // clears the model within half a finger's back-off); else the one that backs off least. Backed
   // off along its approach until the palm clears.
-  bool turn(const V3& mid, const V3& x, const V3& y, std::uint32_t j, Candidate& c, std::uint32_t slot,
-            std::uint32_t& tries) const {
+  bool turn(const V3& mid, const V3& x, const V3& y, std::uint32_t j, float lift_to, Candidate& c,
+            std::uint32_t slot, std::uint32_t& tries) const {
     float best_off = std::numeric_limits<float>::max();
     const int turns = int(cfg.turns);
-    for (int t = 0; t < turns; ++t) {
-      const int side = (t + 1) / 2 * (t % 2 ? 1 : -1);  // 0, +1, -1, +2, -2, ... steps
-      const V3 xt = Eigen::AngleAxisf(float(side) * 2.0f * float(std::numbers::pi) / float(turns), y) * x;
-      if (xt.z() < -0.34f) continue;
-      const float off = back_off(shape, mid, xt, y, palm_offset, palm_half_width, palm_half_height);
-      const Candidate k = oriented(mid - off * xt, xt, y, j);
-      const bool passed = clear ? (++tries, bool(clear(k, slot))) : off <= 0.5f * palm_offset;
-      if (passed || off < best_off) best_off = off, c = k;
-      if (passed) return true;
-    }
+    // Lifted off the floor only when no turn passes as drawn (see SamplerConfig::floor_clearance).
+    for (int lifted = 0; lifted < (lift && clear ? 2 : 1); ++lifted)
+      for (int t = 0; t < turns; ++t) {
+        const int side = (t + 1) / 2 * (t % 2 ? 1 : -1);  // 0, +1, -1, +2, -2, ... steps
+        const V3 xt = Eigen::AngleAxisf(float(side) * 2.0f * float(std::numbers::pi) / float(turns), y) * x;
+        if (xt.z() < -0.34f) continue;
+        const float off = back_off(shape, mid, xt, y, palm_offset, palm_half_width, palm_half_height);
+        Candidate k = oriented(mid - off * xt, xt, y, j);
+        if (lifted) {
+          const float up = lift(k, lift_to);
+          if (!(up > 0.0f)) continue;  // the same candidate as drawn: tried
+          k.position -= up * xt;
+        }
+        const bool passed = clear ? (++tries, bool(clear(k, slot))) : off <= 0.5f * palm_offset;
+        if (passed || (!lifted && off < best_off)) best_off = off, c = k;
+        if (passed) return true;
+      }
     return false;
   }
 };
@@ -228,7 +243,8 @@ std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
                                         float palm_half_height, std::uint64_t seed,
                                         std::uint32_t count, std::uint32_t first,
                                         const ClearFn& clear,
-                                        std::uint32_t enough, std::vector<char>* passed_out) {
+                                        std::uint32_t enough, std::vector<char>* passed_out,
+                                        const LiftFn& lift) {
   if (points.empty()) throw Error("antipodal sampler: the object cloud is empty");
   if (normals.size() != points.size()) throw Error("antipodal sampler: the object has no normals");
   if (shape.empty()) throw Error("antipodal sampler: needs the object's shape (grasp.shape.enabled)");
@@ -237,7 +253,7 @@ std::vector<Candidate> sample_antipodal(std::span<const Eigen::Vector3f> points,
   std::vector<std::uint32_t> pool;  // eligible points near the passes of the blocks drawn
   double focus_share = 0.0;
   const Draw draw{points, normals, shape, cfg, R_BG, max_width, palm_offset, palm_half_width,
-                  palm_half_height, eligible, pool, focus_share, clear};
+                  palm_half_height, eligible, pool, focus_share, clear, lift, seed, first};
   // In blocks of a fixed size, so that where an early stop falls depends on the seed alone.
   // Stops once `enough` passed, or once the checks were tried kTries times per candidate on
   // average: on a view where little can pass (a fragment in turbid water) every candidate

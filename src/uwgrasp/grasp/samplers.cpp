@@ -109,6 +109,8 @@ void check_sampler(const SamplerConfig& cfg) {
   non_negative(cfg.sigma_p, "sigma_p");
   non_negative(cfg.alpha_p, "alpha_p");
   if (cfg.variations == 0) throw Error("grasp.sampler.variations must be at least 1");
+  if (!(cfg.floor_clearance >= 0.0) || !std::isfinite(cfg.floor_clearance))
+    throw Error("grasp.sampler.floor_clearance must be finite and >= 0");
   if (cfg.turns == 0 || cfg.turns > 360) throw Error("grasp.sampler.turns must be in [1, 360]");
   if (!(cfg.pilot > 0.0 && cfg.pilot <= 1.0 / 3.0))
     throw Error("grasp.sampler.pilot must be in (0, 1/3], got " + std::to_string(cfg.pilot));

@@ -52,6 +52,7 @@ void visit_sampler(Visitor& v, grasp::SamplerConfig& s) {
   v.field("enough", s.enough, 0, 1e8);
   v.field("turns", s.turns, 1, 360);
   v.field("focus", s.focus);
+  v.field("floor_clearance", s.floor_clearance, 0.0, 1.0);
 }
 
 void visit_shape(Visitor& v, grasp::ShapeConfig& s) {
