@@ -20,11 +20,7 @@ float floor_lift(const Gripper& g, const Eigen::Vector4f& floor, float clearance
   if (rise < 0.2f) return 0.0f;
   float lowest = std::numeric_limits<float>::max();
   for (const Box& b : g.solids)
-    for (int k = 0; k < 8; ++k) {
-      const Eigen::Vector3f q((k & 1) ? b.hi.x() : b.lo.x(), (k & 2) ? b.hi.y() : b.lo.y(),
-                              (k & 4) ? b.hi.z() : b.lo.z());
-      lowest = std::min(lowest, n.dot(c.rotation * q + c.position) + floor[3]);
-    }
+    for (int k = 0; k < 8; ++k) lowest = std::min(lowest, n.dot(c.rotation * b.corner(k) + c.position) + floor[3]);
   return std::max(0.0f, (clearance - lowest) / rise);
 }
 

@@ -80,13 +80,9 @@ std::vector<std::array<Eigen::Vector3f, 2>> gripper_edges(const Eigen::Isometry3
   std::vector<std::array<Eigen::Vector3f, 2>> out;
   for (int part = 0; part < (body ? kParts : kParts - 1); ++part) {
     const Box& box = g.solids[static_cast<std::size_t>(part)];
-    const auto corner = [&](int k) {
-      return Eigen::Vector3f((k & 1) ? box.hi.x() : box.lo.x(), (k & 2) ? box.hi.y() : box.lo.y(),
-                             (k & 4) ? box.hi.z() : box.lo.z());
-    };
     for (int a = 0; a < 8; ++a)  // each corner to the corners one bit away: the 12 edges
       for (int bit = 0; bit < 3; ++bit)
-        if (const int b = a | (1 << bit); b != a) out.push_back({Tf * corner(a), Tf * corner(b)});
+        if (const int b = a | (1 << bit); b != a) out.push_back({Tf * box.corner(a), Tf * box.corner(b)});
   }
   return out;
 }

@@ -39,6 +39,10 @@ struct Box {
   Eigen::Vector3f centre() const { return 0.5f * (lo + hi); }
   Eigen::Vector3f half() const { return 0.5f * (hi - lo); }
   float volume() const { return (hi - lo).prod(); }
+  // Corner k of 8: bit 0 picks hi.x over lo.x, bit 1 hi.y, bit 2 hi.z.
+  Eigen::Vector3f corner(int k) const {
+    return {(k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(), (k & 4) ? hi.z() : lo.z()};
+  }
 };
 
 // The solid parts, in the order the collision check reports them.

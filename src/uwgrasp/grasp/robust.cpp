@@ -16,11 +16,8 @@ bool blocked(const ModelView& m, const Candidate& c) {
   for (const Box& b : m.gripper.solids) {
     if (m.shape.occupied(c.rotation * b.centre() + c.position)) return true;
     if (!m.floor) continue;
-    for (int k = 0; k < 8; ++k) {
-      const Eigen::Vector3f q((k & 1) ? b.hi.x() : b.lo.x(), (k & 2) ? b.hi.y() : b.lo.y(),
-                              (k & 4) ? b.hi.z() : b.lo.z());
-      if (m.floor->head<3>().dot(c.rotation * q + c.position) + (*m.floor)[3] < 0.0f) return true;
-    }
+    for (int k = 0; k < 8; ++k)
+      if (m.floor->head<3>().dot(c.rotation * b.corner(k) + c.position) + (*m.floor)[3] < 0.0f) return true;
   }
   return false;
 }
