@@ -242,20 +242,37 @@ TEST(Holds, MostCandidatesFeasibleWhereFewPlacesAreGraspable) {
 // failed the reach check and those that passed had their tips within a few millimetres of the
 // floor, so the robust ranking found none that held when perturbed and the detector offered no
 // grasp where the judge finds many (the T-bar, perfect sensor, 13 of 60 seeds). Draws tried
-// again backed off until the gripper clears the floor (grasp.sampler.floor_clearance, off by
-// default: docs/results/grasps-that-hold.md) give a top-1 that holds, also under the judge's
-// perturbation, and most candidates pass.
+// again backed off until the gripper clears the floor (grasp.sampler.floor_clearance) give a
+// top-1 that holds, also under the judge's perturbation, and most candidates pass.
 TEST(Holds, ABarLyingOnTheSeafloorIsHeldNearTheFingertips) {
   UWGRASP_MESH_SCENE_OR_SKIP(s, "t_bar_lying");
-  io::Config lifted;
-  lifted.grasp.sampler.floor_clearance = 0.005;
-  int offered_before = 0;
+  io::Config unlifted;
+  unlifted.grasp.sampler.floor_clearance = 0.0;
+  int offered_unlifted = 0;
   for (const std::uint64_t seed : {3, 10}) {
-    const Judged after = detect_and_judge(s, lifted, seed, false);
+    const Judged after = detect_and_judge(s, io::Config{}, seed, false);
     EXPECT_TRUE(top1_holds(after)) << "seed " << seed;
     EXPECT_GE(after.evaluation.robust_top1, 0.4) << "seed " << seed;
     EXPECT_GE(double(after.detection.result.feasible()), 0.3 * double(after.detection.result.candidates));
-    offered_before += !detect_and_judge(s, io::Config{}, seed, false).detection.result.grasps.empty();
+    offered_unlifted += !detect_and_judge(s, unlifted, seed, false).detection.result.grasps.empty();
   }
-  EXPECT_EQ(offered_before, 0) << "the scene no longer provokes the failure";
+  EXPECT_EQ(offered_unlifted, 0) << "the scene no longer provokes the failure";
+}
+
+// The lift is for objects lower than the fingers are long. On the barbell (plates 8.5 cm tall, a
+// bar between them 2.5 cm over the floor) lifted draws closed on the bar's edges, out of force
+// closure on the true shape though not by our prediction (noisy water): every grasp of a taller
+// object is drawn as it is without the lift.
+TEST(Holds, AnObjectTallerThanTheFingersIsNotLifted) {
+  const sim::Scene s = sim::builtin_scene("barbell");
+  io::Config unlifted;
+  unlifted.grasp.sampler.floor_clearance = 0.0;
+  for (const std::uint64_t seed : {2, 5}) {
+    const auto with = detect_and_judge(s, io::Config{}, seed, false, "clear").detection.result.grasps;
+    const auto without = detect_and_judge(s, unlifted, seed, false, "clear").detection.result.grasps;
+    ASSERT_FALSE(with.empty()) << "seed " << seed;
+    ASSERT_EQ(with.size(), without.size()) << "seed " << seed;
+    for (std::size_t i = 0; i < with.size(); ++i)
+      EXPECT_TRUE(with[i].level_from_gripper.isApprox(without[i].level_from_gripper)) << "seed " << seed << " rank " << i;
+  }
 }
