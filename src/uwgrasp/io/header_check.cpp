@@ -111,9 +111,7 @@ std::size_t single(const std::string& path, const Header& h, const char* key) {
   if (w.size() != 1) bad(path, std::string(key) + " needs one value");
   return number(path, key, w[0]);
 }
-}  // namespace
 
-namespace {
 // PCL 1.13's header reader goes on after the DATA line: it skips empty lines, comments ('#') and
 // VERSION lines, and parses the next line as a header line when it starts with a header key (by
 // prefix). Binary data that happens to begin "COLUMNS" or "FIELDS", at once or after such lines,
