@@ -259,7 +259,7 @@ TEST(Holds, ABarLyingOnTheSeafloorIsHeldNearTheFingertips) {
   EXPECT_EQ(offered_unlifted, 0) << "the scene no longer provokes the failure";
 }
 
-// The lift is for objects lower than the fingers are long. On the barbell (plates 8.5 cm tall, a
+// The lift is for objects lower than the fingers are long. On the barbell (plates 7.5 cm tall, a
 // bar between them 2.5 cm over the floor) lifted draws closed on the bar's edges, out of force
 // closure on the true shape though not by our prediction (noisy water): every grasp of a taller
 // object is drawn as it is without the lift.
