@@ -126,6 +126,21 @@ void fill_unseen(Grid g, std::span<const V3> camera, const std::vector<int>& top
   });
 }
 
+// Whether a face neighbour of (i, j, k) is `outside`; a voxel off the grid's faces reads its
+// neighbours by strides, without a bounds test each (the shells scan every voxel of the grid).
+template <class Outside>
+bool on_boundary(Grid g, int i, int j, int k, Outside outside) {
+  const ObjectShape& s = g.s;
+  if (i >= 1 && j >= 1 && k >= 1 && i + 1 < s.nx && j + 1 < s.ny && k + 1 < s.nz) {
+    const std::ptrdiff_t sy = s.nx, sz = std::ptrdiff_t(s.nx) * s.ny;
+    const Occupancy* c = s.cells.data() + g.index(i, j, k);
+    return outside(c[-1]) || outside(c[1]) || outside(c[-sy]) || outside(c[sy]) || outside(c[-sz]) ||
+           outside(c[sz]);
+  }
+  return outside(g.get(i - 1, j, k)) || outside(g.get(i + 1, j, k)) || outside(g.get(i, j - 1, k)) ||
+         outside(g.get(i, j + 1, k)) || outside(g.get(i, j, k - 1)) || outside(g.get(i, j, k + 1));
+}
+
 // Whether a mirrored voxel touches (i, j, k): the mirrored points already give the surface there,
 // with the seen side's normals, which a voxel shell only approximates.
 bool by_mirrored(Grid g, int i, int j, int k) {
@@ -175,10 +190,7 @@ void shell(Grid g, Part part, Outside outside, bool mirrored_surface, std::vecto
       for (int i = 0; i < s.nx; ++i) {
         const Occupancy o = s.cells[g.index(i, j, k)];
         if (o == Occupancy::free || o == Occupancy::seen || o == Occupancy::mirrored || !part(o)) continue;
-        const bool boundary = outside(g.get(i - 1, j, k)) || outside(g.get(i + 1, j, k)) ||
-                              outside(g.get(i, j - 1, k)) || outside(g.get(i, j + 1, k)) ||
-                              outside(g.get(i, j, k - 1)) || outside(g.get(i, j, k + 1));
-        if (!boundary || (mirrored_surface && by_mirrored(g, i, j, k))) continue;
+        if (!on_boundary(g, i, j, k, outside) || (mirrored_surface && by_mirrored(g, i, j, k))) continue;
         const V3 n = away_from_mass(g, i, j, k, outside);
         if (n.norm() < 1e-3f) continue;  // no side faces away from the mass: not a surface
         slab_points[std::size_t(k)].push_back(g.centre(i, j, k));
