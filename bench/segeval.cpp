@@ -3,7 +3,8 @@
 // RegionGrowing run with the same parameters on the same preprocessed cloud (same normals, plane
 // removed), and for PCL's organised chain on the raw frame. Then how far the two paths' normals
 // agree on the points both keep, away from depth edges, on the same frames and the real stereo
-// mug frame.
+// mug frame, and on the analytic seafloor scene, with and without depth noise, against its true
+// normals too.
 //   segeval [--set section.key=value]...
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/region_growing.h>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "pcl_organised.hpp"
+#include "scene.hpp"
 #include "uwgrasp/io/config.hpp"
 #include "uwgrasp/io/pcd.hpp"
 #include "uwgrasp/segment/pipeline.hpp"
@@ -110,13 +112,16 @@ struct Agreement {
   std::size_t points = 0;
   double share = 0, median_deg = 0;
 };
-Agreement normals_agree(const Cloud& in, const segment::Scene& a, const segment::Scene& b,
-                        const cloud::OrganisedConfig& org, double deg) {
+// `b` null: against `truth` (one normal per input pixel), on the points `a` keeps.
+Agreement normals_agree(const Cloud& in, const segment::Scene& a, const segment::Scene* b,
+                        const cloud::OrganisedConfig& org, double deg,
+                        const std::vector<Eigen::Vector3f>* truth = nullptr) {
   std::vector<double> angles;
   for (std::size_t i = 0; i < in.size(); ++i) {
-    const auto ia = a.pre.output_of_input[i], ib = b.pre.output_of_input[i];
+    const auto ia = a.pre.output_of_input[i], ib = b ? b->pre.output_of_input[i] : 0;
     if (ia < 0 || ib < 0 || !away_from_edges(in, i, int(org.normal_half_window), org.depth_change)) continue;
-    const Eigen::Vector3f na = a.pre.cloud.normals[std::size_t(ia)], nb = b.pre.cloud.normals[std::size_t(ib)];
+    const Eigen::Vector3f na = a.pre.cloud.normals[std::size_t(ia)];
+    const Eigen::Vector3f nb = b ? b->pre.cloud.normals[std::size_t(ib)] : (*truth)[i];
     if (!is_finite(na) || !is_finite(nb)) continue;
     angles.push_back(std::acos(std::min(1.0, double(std::abs(na.normalized().dot(nb.normalized()))))) * 180.0 / M_PI);
   }
@@ -129,6 +134,27 @@ Agreement normals_agree(const Cloud& in, const segment::Scene& a, const segment:
   std::nth_element(angles.begin(), angles.begin() + std::ptrdiff_t(angles.size() / 2), angles.end());
   out.median_deg = angles[angles.size() / 2];
   return out;
+}
+
+// The analytic seafloor scene (bench/scene.hpp: boxes on a plane, 640 x 480) without depth noise
+// and with the noise of a stereo rig (sigma = noise z^2): the two paths' normals against each
+// other and each against the true faces' normals.
+void analytic_normals(const io::Config& cfg, const io::Config& kd_cfg) {
+  std::printf("\nOn the analytic seafloor scene (640 x 480, boxes on a plane), the same comparison and each "
+              "path against the true normals (the faces'), on the points each keeps away from depth edges:\n\n");
+  std::printf("| depth noise (sigma at 1 m) | organised vs k-d tree: within 5 deg | median | organised vs truth: "
+              "within 5 deg | median | k-d tree vs truth: within 5 deg | median |\n|---|---|---|---|---|---|---|\n");
+  for (const float noise : {0.0f, 0.0005f, 0.001f, 0.002f}) {
+    std::vector<Eigen::Vector3f> truth;
+    const Cloud in = bench::seafloor_scene(640, 480, noise, 1, &truth);
+    const segment::Scene s = segment::segment_scene(in, cfg.preprocess, cfg.segment, cfg.seed);
+    const segment::Scene kd = segment::segment_scene(in, kd_cfg.preprocess, kd_cfg.segment, cfg.seed);
+    const cloud::OrganisedConfig& org = cfg.preprocess.organised;
+    const Agreement ab = normals_agree(in, s, &kd, org, 5.0), at = normals_agree(in, s, nullptr, org, 5.0, &truth),
+                    bt = normals_agree(in, kd, nullptr, org, 5.0, &truth);
+    std::printf("| %.1f mm | %.1f %% | %.2f | %.1f %% | %.2f | %.1f %% | %.2f |\n", 1000.0f * noise, 100.0 * ab.share,
+                ab.median_deg, 100.0 * at.share, at.median_deg, 100.0 * bt.share, bt.median_deg);
+  }
 }
 }  // namespace
 
@@ -184,8 +210,9 @@ int main(int argc, char** argv) {
     const Cloud in = io::load_cloud(path);
     const segment::Scene s = segment::segment_scene(in, cfg.preprocess, cfg.segment, cfg.seed);
     const segment::Scene kd = segment::segment_scene(in, kd_cfg.preprocess, kd_cfg.segment, cfg.seed);
-    const Agreement g = normals_agree(in, s, kd, cfg.preprocess.organised, 5.0);
+    const Agreement g = normals_agree(in, s, &kd, cfg.preprocess.organised, 5.0);
     std::printf("| %s | %zu | %.1f %% | %.2f |\n", name, g.points, 100.0 * g.share, g.median_deg);
   }
+  analytic_normals(cfg, kd_cfg);
   return 0;
 }
