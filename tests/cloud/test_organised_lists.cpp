@@ -8,6 +8,7 @@
 
 #include "organised_frames.hpp"
 #include "shapes.hpp"
+#include "uwgrasp/cloud/outliers.hpp"
 #include "uwgrasp/core/rng.hpp"
 
 namespace uwgrasp::cloud {
@@ -105,6 +106,34 @@ TEST(Organised, MeanDistancesAreTheWindowsKNearestByBruteForce) {
     EXPECT_NEAR(mean[j], sum / double(k), 1e-5) << j;
   }
   EXPECT_GT(mean[100], 20 * mean[500]);
+}
+
+// A pixel with no other pixel in play within the widest window (13 x 13) is a flying pixel:
+// its statistic is infinity, it is removed, and it is left out of the statistic's mean and
+// deviation, so flying pixels do not widen the threshold for the rest (a k-d tree search finds
+// their neighbours however far, and a few of them widen it: on a simulated frame from 4.5 to
+// 16 mm). Here three such pixels change nothing else the window statistic removes, and make the
+// k-d tree path keep more of the plane.
+TEST(Organised, FlyingPixelsAreRemovedWithoutWideningTheThreshold) {
+  Cloud c = test::plane_grid(30, 0.3f, 1.0f, 7, 0.004f);
+  c.width = c.height = 30;
+  std::vector<std::uint32_t> block;  // rows 0-14, and three pixels 7-13 rings from the rest
+  for (std::uint32_t i = 0; i < 15 * 30; ++i) block.push_back(i);
+  std::vector<std::uint32_t> all = block;
+  for (const std::uint32_t i : {22u * 30 + 27, 27u * 30 + 5, 27u * 30 + 20}) all.push_back(i);
+  c.points[22 * 30 + 27].z() -= 0.5f;  // half a metre in front of the plane
+  const OutlierConfig cfg{true, 10, 1.0f};
+  const auto removed_by_window = [&](const std::vector<std::uint32_t>& pixels) {
+    const Cloud pts = select(c, pixels);
+    return remove_outliers_by(pts, cfg, window_mean_distances(pts.points, pixel_map(30, 30, pixels), 2, 10)).indices;
+  };
+  const std::vector<std::uint32_t> kept_block = removed_by_window(block), kept_all = removed_by_window(all);
+  EXPECT_LT(kept_block.size(), block.size());  // the noise alone removes some of the plane
+  EXPECT_EQ(kept_all, kept_block);             // the same ones, and the three flying pixels
+  const auto kd_kept = [&](const std::vector<std::uint32_t>& pixels) {
+    return remove_outliers(select(c, pixels), cfg).indices.size();
+  };
+  EXPECT_GT(kd_kept(all), kd_kept(block));
 }
 
 }  // namespace uwgrasp::cloud
