@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <memory>
 
 #include "uwgrasp/cloud/organised.hpp"
 #include "uwgrasp/cloud/organised_window.hpp"
@@ -28,8 +29,10 @@ std::vector<char> surely_full(const PixelMap& map, const Ranges& range, std::siz
   constexpr float inf = std::numeric_limits<float>::infinity();
   std::vector<char> full(map.pixel.size(), 0);
   if (W < 2 * h + 1 || H < 2 * h + 1) return full;
-  std::vector<float> img(W * H, inf), lo(W * H, inf), hi(W * H, inf);
-  for (std::size_t j = 0; j < map.pixel.size(); ++j) img[map.pixel[j]] = range.r[j];
+  // lo and hi are read only where the row pass wrote them: left unset (two fewer 1.2 MB fills).
+  std::vector<float> img(W * H, inf);
+  const std::unique_ptr<float[]> lo(new float[W * H]), hi(new float[W * H]);
+  tbb::parallel_for(std::size_t(0), map.pixel.size(), [&](std::size_t j) { img[map.pixel[j]] = range.r[j]; });
   // Across the rows, then down the columns, over the pixels whose window lies in the frame.
   tbb::parallel_for(std::size_t(0), H, [&](std::size_t v) {
     const float* row = &img[v * W];
