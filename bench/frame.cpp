@@ -3,6 +3,7 @@
 // frames; and PCL's organised chain (IntegralImageNormalEstimation +
 // OrganizedMultiPlaneSegmentation + OrganizedConnectedComponentSegmentation) on the same frames.
 //   frame [--repeats N] [--frame NAME]   (default 20 repeats; NAME: a frame below or "simulated")
+// Also counts the operator new calls of one more frame of the warm stream (alloc_count.hpp).
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "alloc_count.hpp"
 #include "pcl_organised.hpp"
 #include "scene.hpp"
 #include "uwgrasp/core/error.hpp"
@@ -41,6 +43,7 @@ double time_ms(const std::function<void()>& f) {
 struct Row {
   double segments = 0, grasp = 0, kd_segments = 0;
   std::map<std::string, std::vector<double>> stages;
+  bench::Allocations seg_alloc, grasp_alloc;  // one more frame of the warm stream
 };
 
 Row run_uwgrasp(const Cloud& frame, io::Config cfg, int repeats) {
@@ -52,6 +55,8 @@ Row run_uwgrasp(const Cloud& frame, io::Config cfg, int repeats) {
     grasp.push_back(time_ms([&] { d = grasp::detect(frame, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed); }));
     for (const auto& st : d.timer.stages()) row.stages[st.name].push_back(st.ms);
   }
+  row.seg_alloc = bench::count_allocations([&] { segment::segment_scene(frame, cfg.preprocess, cfg.segment, cfg.seed); });
+  row.grasp_alloc = bench::count_allocations([&] { grasp::detect(frame, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed); });
   cfg.preprocess.organised.enabled = false;
   for (int r = 0; r < std::max(3, repeats / 4); ++r)
     kd.push_back(time_ms([&] { segment::segment_scene(frame, cfg.preprocess, cfg.segment, cfg.seed); }));
@@ -112,4 +117,9 @@ int main(int argc, char** argv) {
       row.stages.count(s) ? std::printf(" %.1f |", median(row.stages[s])) : std::printf(" - |");
     std::printf("\n");
   }
+  std::printf("\nCalls to operator new in one more frame of the warm stream at 2 threads (calls, MB asked):\n\n"
+              "| frame | segments calls | segments MB | best grasp calls | best grasp MB |\n|---|---|---|---|---|\n");
+  for (const auto& [name, row] : stage_rows)
+    std::printf("| %s | %zu | %.1f | %zu | %.1f |\n", name.c_str(), row.seg_alloc.calls, double(row.seg_alloc.bytes) / 1048576.0,
+                row.grasp_alloc.calls, double(row.grasp_alloc.bytes) / 1048576.0);
 }

@@ -24,7 +24,7 @@ bool blocked(const ModelView& m, const Candidate& c) {
 }  // namespace
 
 ContactPrediction predict(const ModelView& m, const Candidate& c) {
-  std::vector<std::uint32_t> idx;
+  thread_local std::vector<std::uint32_t> idx;  // each thread's, reused (closing_indices clears it)
   closing_indices(m.bvh, m.gripper, c, idx);
   ContactPrediction p = predict_contacts(m.points, m.normals, idx, c, m.band, m.radius, m.measured);
   if (m.core_bvh == nullptr || !p.valid) return p;

@@ -1,5 +1,6 @@
 #include "uwgrasp/grasp/shape.hpp"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Eigenvalues>
@@ -253,13 +254,15 @@ float surface_noise(std::span<const Eigen::Vector3f> points, std::size_t k, std:
   const cloud::KdTree tree(points);
   const std::size_t step = std::max<std::size_t>(1, points.size() / samples);
   std::vector<float> rms((points.size() + step - 1) / step);
-  tbb::parallel_for(std::size_t(0), rms.size(), [&](std::size_t s) {
-    std::vector<std::uint32_t> idx(k);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rms.size()), [&](const auto& r) {
+    std::vector<std::uint32_t> idx(k);  // a range's, not a sample's
     std::vector<float> d2(k);
-    idx.resize(tree.knn(points[s * step], k, idx.data(), d2.data()));
-    const MeanCovariance mc = mean_covariance(points, idx);
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(mc.cov, Eigen::EigenvaluesOnly);
-    rms[s] = float(std::sqrt(std::max(0.0, es.eigenvalues()[0])));
+    for (std::size_t s = r.begin(); s != r.end(); ++s) {
+      const std::size_t n = tree.knn(points[s * step], k, idx.data(), d2.data());
+      const MeanCovariance mc = mean_covariance(points, std::span(idx).first(n));
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(mc.cov, Eigen::EigenvaluesOnly);
+      rms[s] = float(std::sqrt(std::max(0.0, es.eigenvalues()[0])));
+    }
   });
   std::nth_element(rms.begin(), rms.begin() + std::ptrdiff_t(rms.size() / 2), rms.end());
   return rms[rms.size() / 2];

@@ -8,7 +8,10 @@ Scored best_offset(std::span<const V3> sample, const V3& n, const SceneView& vie
                    float step, float tolerance, const SymmetryConfig& cfg) {
   const Eigen::Matrix3f R = view.camera_from_level.linear().cast<float>();
   const V3 t = view.camera_from_level.translation().cast<float>();
-  std::vector<V3> base(sample.size()), level(sample.size());
+  // Each thread's buffers, reused: the coarse grid alone asks for thousands of offset searches.
+  thread_local std::vector<V3> base, level;
+  thread_local std::vector<MirrorPlane> tried;
+  base.resize(sample.size()), level.resize(sample.size()), tried.clear();
   for (std::size_t i = 0; i < sample.size(); ++i) {
     level[i] = sample[i] - 2.0f * n.dot(sample[i]) * n;
     base[i] = R * level[i] + t;
@@ -16,7 +19,6 @@ Scored best_offset(std::span<const V3> sample, const V3& n, const SceneView& vie
   const V3 u = 2.0f * (R * n), w = 2.0f * n;
   const float size = float(sample.size());
   const int limit = int(std::floor(cfg.max_violations * size));
-  std::vector<MirrorPlane> tried;
   for (int k = 0; lo + float(k) * step <= hi + 1e-6f; ++k) {
     const float d = lo + float(k) * step;
     int support = 0, violations = 0;
