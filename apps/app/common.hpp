@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/config.hpp"
 
 namespace uwgrasp::app {
@@ -41,5 +42,17 @@ double ms_since(std::chrono::steady_clock::time_point t0);
 
 // Writes one line to stderr when stderr is a terminal or --progress asked for it.
 void progress(const std::string& line);
+
+// f(), with the input's name before the message of an Error it throws: a refusal of what the
+// file holds ("no finite point", "no segment to grasp") then names the file, as a refusal to
+// read it does.
+template <class F>
+decltype(auto) about_input(const std::string& name, F&& f) {
+  try {
+    return f();
+  } catch (const Error& e) {
+    throw Error(name + ": " + e.what());
+  }
+}
 
 }  // namespace uwgrasp::app

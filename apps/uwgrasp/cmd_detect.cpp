@@ -211,8 +211,8 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
       std::printf(" total %.1f\n", sensor_timer.total_ms());
     }
     progress("uwgrasp detect: " + std::to_string(input.size()) + " points, detecting");
-    const grasp::Detection d =
-        grasp::detect(input, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed);
+    const grasp::Detection d = about_input(
+        name, [&] { return grasp::detect(input, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed); });
     std::printf("path: %s\nframe: %s\n", cloud::path_summary(input, cfg.preprocess).c_str(),
                 in.summary.c_str());
     print_detection(name, d, cfg, in.frame);

@@ -114,8 +114,8 @@ void add_segment_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>
     const CameraCloud in = to_camera_frame(io::load_cloud(o->cloud), o->frame, o->cloud);
     const Cloud& input = in.cloud;
     progress("uwgrasp segment: " + std::to_string(input.size()) + " points, segmenting");
-    const segment::Scene scene =
-        segment::segment_scene(input, cfg.preprocess, cfg.segment, cfg.seed);
+    const segment::Scene scene = about_input(
+        o->cloud, [&] { return segment::segment_scene(input, cfg.preprocess, cfg.segment, cfg.seed); });
     long selected = -1;
     if (!scene.info.empty() && (input.has_colors() || cfg.segment.object.by != segment::ObjectBy::color)) {
       try {
