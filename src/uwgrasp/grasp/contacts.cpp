@@ -45,10 +45,7 @@ ContactPrediction predict_contacts(std::span<const Eigen::Vector3f> points,
   // thread keeps: the robustness and score stages predict ~10^4 closings a frame, and their
   // allocations were half of a warm frame's calls to the allocator.
   thread_local Scratch scratch;
-  std::vector<V3>& local = scratch.local;
-  std::vector<V3>& nrm = scratch.nrm;
-  std::vector<char>& from_camera = scratch.from_camera;
-  std::vector<std::uint32_t>& near = scratch.near;
+  auto& [local, nrm, from_camera, near] = scratch;
   local.resize(closing.size()), nrm.resize(closing.size()), from_camera.resize(closing.size());
   const Eigen::Matrix3f Rt = c.rotation.transpose();
   for (std::size_t i = 0; i < closing.size(); ++i) {
