@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <span>
@@ -103,10 +104,15 @@ std::size_t by_colour(const Cloud& cloud, const Objects& o, const ObjectConfig& 
         if (v >= threshold) ++coloured[k], intensity[k] += v;
       }
   const std::size_t most = coloured.empty() ? 0 : *std::max_element(coloured.begin(), coloured.end());
-  if (most == 0)
+  if (most == 0) {
+    // Water takes red first, and more with range: say how to get the colour back, or do without.
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", double(threshold));
     throw Error("no " + cfg.color + " object: none of " + std::to_string(o.points.size()) +
-                " objects has a point of intensity >= segment.object.min_intensity " +
-                std::to_string(cfg.min_intensity));
+                " objects has a point of intensity >= " + value +
+                " (segment.object.min_intensity); if water has faded it, preprocess.water.enabled restores "
+                "colours, or select the object by point, nearest or largest");
+  }
   std::size_t best = o.points.size();
   for (std::size_t k = 0; k < o.points.size(); ++k) {
     if (4 * coloured[k] < most) continue;
