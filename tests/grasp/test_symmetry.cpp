@@ -56,11 +56,10 @@ Solid can(const V3& base_centre, float radius, float height) {
   return s;
 }
 
-Solid box(const V3& base_centre, const V3& size, float yaw) {
+// A box of `size` turned by R about its centre.
+Solid box(const V3& centre, const V3& size, const Eigen::Matrix3f& R) {
   Solid s;
-  const Eigen::Matrix3f R = Eigen::AngleAxisf(yaw, V3::UnitZ()).toRotationMatrix();
   const V3 h = 0.5f * size;
-  const V3 centre = base_centre - V3(0, 0, h.z());
   for (int axis = 0; axis < 3; ++axis)
     for (const float side : {-1.0f, 1.0f}) {
       const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -77,6 +76,11 @@ Solid box(const V3& base_centre, const V3& size, float yaw) {
         }
     }
   return s;
+}
+
+// An upright box turned by `yaw`, standing on base_centre.
+Solid box(const V3& base_centre, const V3& size, float yaw) {
+  return box(base_centre - V3(0, 0, 0.5f * size.z()), size, Eigen::AngleAxisf(yaw, V3::UnitZ()).toRotationMatrix());
 }
 
 // What the camera at L's origin sees of a convex solid: the surface facing it.
@@ -225,6 +229,39 @@ TEST(Symmetry, ATurnedBoxIsCompletedByItsTwoFacePlanes) {
     const int hidden_side = R.col(a).dot(-centre) < 0.0f ? 1 : 0;
     EXPECT_TRUE(faces[a][hidden_side]) << "face " << a << (hidden_side ? " +" : " -");
   }
+}
+
+// A square-section box tilted two ways (docs/results/holds/probe/tilted.yaml), its seen side
+// with 1.5 mm of depth noise. Its diagonal plane maps the two seen side faces onto each other
+// and outscores either face plane, but adds nothing behind them, and the plane square to it
+// tilts out of reach: kept alone it left the back unmirrored and grasps closed on the minimum
+// thickness. The two face planes together complete it.
+TEST(Symmetry, ATiltedSquareBoxIsCompletedByItsFacePlanesNotADiagonal) {
+  const Eigen::Matrix3f world = (Eigen::AngleAxisf(0.9f, V3::UnitZ()) * Eigen::AngleAxisf(0.3f, V3::UnitY()) *
+                                 Eigen::AngleAxisf(0.5f, V3::UnitX())).toRotationMatrix();
+  const Eigen::Matrix3f flip = V3(1.0f, -1.0f, -1.0f).asDiagonal();  // world (z up) to L (z down)
+  const Eigen::Matrix3f R = flip * world * flip;
+  const Sighted all = visible(box(V3(0.82f, 0.0f, kFloor - 0.035f), V3(0.06f, 0.06f, 0.09f), R));
+  std::mt19937 rng(1);
+  std::normal_distribution<float> depth(0.0f, 0.0015f);
+  const Pose T = camera_from_level();
+  Sighted seen;  // above the seafloor, each point moved along its ray
+  for (std::size_t i = 0; i < all.level.size(); ++i) {
+    if (all.level[i].z() >= kFloor) continue;
+    const V3 c = all.camera[i] * (1.0f + depth(rng) / all.camera[i].norm());
+    seen.camera.push_back(c);
+    seen.level.push_back((T.inverse() * c.cast<double>()).cast<float>());
+    seen.normals.push_back(all.normals[i]);
+  }
+  const Sight s = sight_of(seen);
+  const std::vector<MirrorPlane> planes = find_symmetry(seen.level, s.view(), 0.0015f, SymmetryConfig{});
+  ASSERT_EQ(planes.size(), 2u);
+  const V3 n = planes[0].normal;
+  EXPECT_GT(std::max(std::abs(n.dot(R.col(0))), std::abs(n.dot(R.col(1)))), 0.99f)
+      << "the first plane's normal along a side face's, not the diagonal: " << n.transpose();
+  // (The second comes out upright here, 27 degrees off the other face plane: the upright prior
+  // and one noisy view do not fix its turn - docs/results/grasps-that-hold.md.)
+  EXPECT_LT(std::abs(n.dot(planes[1].normal)), 1e-5f) << "square to the first";
 }
 
 TEST(Symmetry, KeptPlanesNeverPutTheSeenSideIntoSeenFreeSpace) {

@@ -17,7 +17,10 @@
 // `tilt_margin` better), aligned to the mirror pairs it makes, and kept when its violations and
 // support pass the limits; with it the best plane perpendicular to it (a box's, a bottle's second
 // symmetry: only its turn about the first plane's normal and its offset are searched), and the
-// two turned together about their common line to where both fit best.
+// two turned together about their common line to where both fit best. The best plane of another
+// family (30 degrees or more from the first) and its partner are found the same way; the set
+// with more planes is kept, then the one with the higher summed score (a square box's diagonal
+// plane outscores its face planes but has no partner within reach, and adds nothing behind).
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
