@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 
 #include "shapes.hpp"
 #include "uwgrasp/cloud/preprocess.hpp"
@@ -165,6 +166,33 @@ TEST(Preprocess, AnObjectOnlyScanKeepsItsFaces) {
   const Preprocessed floor = preprocess(floor_scene(), {}, 1, t);
   EXPECT_TRUE(floor.plane.found);
   EXPECT_FALSE(floor.plane_is_face);
+}
+
+// A pipe lying on the seafloor puts nothing clearly in front of the floor (its top is within
+// three plane tolerances), and stereo leaves a few hundred mismatches behind it: the floor is
+// still the support and is removed, not kept as the face of an object (the floor would then be
+// segmented with the pipe).
+TEST(Preprocess, AFloorWithALowObjectAndAFewMismatchesBehindItIsStillRemoved) {
+  Cloud c;
+  for (float x = -1; x <= 1; x += 0.01f)
+    for (float z = 1; z <= 3; z += 0.01f) c.points.emplace_back(x, 1.5f, z);
+  test::append(c, test::box_surface({-0.2f, 1.48f, 1.9f}, {0.2f, 1.4999f, 1.95f}, 0.005f));
+  const std::size_t floor_and_objects = c.size();
+  for (float x = -0.9f; x <= 0.9f; x += 0.1f)  // 19 x 19 mismatches, 5-41 cm behind the floor
+    for (float z = 1.1f; z <= 2.9f; z += 0.1f) c.points.emplace_back(x, 1.55f + 0.2f * (x + 0.9f), z);
+  make_unorganised(c);
+  ASSERT_LT(double(c.size() - floor_and_objects), 0.01 * double(floor_and_objects));
+  StageTimer t;
+  PreprocessConfig cfg;
+  cfg.outliers.enabled = false;
+  const Preprocessed p = preprocess(c, cfg, 1, t);
+  ASSERT_TRUE(p.plane.found);
+  EXPECT_FALSE(p.plane_is_face);
+  EXPECT_LT(test::angle_deg(p.plane.coefficients.head<3>(), {0, -1, 0}), 0.1);
+  // Left: the pipe's top above the floor's tolerance and the mismatches, not the floor.
+  EXPECT_LT(p.cloud.size(), c.size() / 10);
+  const auto above = [](const Eigen::Vector3f& q) { return q.y() < 1.485f; };
+  EXPECT_GT(std::count_if(p.cloud.points.begin(), p.cloud.points.end(), above), 500);
 }
 
 }  // namespace uwgrasp::cloud

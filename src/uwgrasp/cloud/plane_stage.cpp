@@ -17,6 +17,9 @@
 namespace uwgrasp::cloud {
 
 namespace {
+// Points behind a plane, as a share of its inliers, that are too few to make it an object's face.
+constexpr double kFewBehind = 0.05;
+
 // The plane cells (u, v) holding an inlier, for supports_the_rest: a bitmap over the inliers'
 // cells when it is small (a frame's floor: a few hundred thousand cells; an unordered_set of
 // 200k inliers took 3 ms to fill), else a hash set.
@@ -116,7 +119,9 @@ void keep_turned_points(const Cloud& cur, const PixelMap& map, const PreprocessC
 // (their projection along the normal within a cell of an inlier's) lie mostly on the sensor's
 // side of it, as objects standing on a support do, rather than behind it, as the rest of an
 // object does behind one of its own faces. Points beyond the plane's edge (the room behind a
-// table) do not count either way.
+// table) do not count either way. Nor do a few behind it: an opaque support hides what is behind
+// it, so those are mismatches (stereo's, a few hundred on a seafloor with only a pipe lying on
+// it, which puts nothing in front), while an object's other faces are a sizeable share of it.
 bool supports_the_rest(const Cloud& cur, const PlaneConfig& cfg, const PlaneResult& plane) {
   const Eigen::Vector4f& n = plane.coefficients;
   const Eigen::Vector3f normal = n.head<3>();
@@ -140,7 +145,7 @@ bool supports_the_rest(const Cloud& cur, const PlaneConfig& cfg, const PlaneResu
         return c;
       },
       [](Tally x, const Tally& y) { return Tally{x[0] + y[0], x[1] + y[1]}; });
-  return t[0] >= t[1];
+  return t[0] >= t[1] || double(t[1]) < kFewBehind * double(plane.inliers.size());
 }
 
 }  // namespace uwgrasp::cloud
