@@ -21,11 +21,12 @@ namespace uwgrasp::experiments {
 
 struct JudgedCase {
   std::string scene;  // built-in name or scene file
-  std::string water;  // preset
+  std::string water;  // preset; empty: the scene file's own water (else the config's sim.water)
   bool noise = false; // realistic sensor (noise, dropouts, marine snow)
   std::string sensor = "rgbd";  // or "stereo": the pair matched by camera/ into the cloud
   std::string label() const {
-    return water + (sensor == "stereo" ? " stereo" : "") + (noise ? "" : " (perfect sensor)");
+    return (water.empty() ? std::string("scene's water") : water) + (sensor == "stereo" ? " stereo" : "") +
+           (noise ? "" : " (perfect sensor)");
   }
 };
 

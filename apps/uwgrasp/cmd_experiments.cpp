@@ -52,8 +52,10 @@ int run_judged(const ExperimentOptions& o) {
   for (const auto& scene : scenes)
     for (const auto& w : o.waters)
       for (const auto& sensor : o.sensors) {
+        // "scene": each scene file's own water (else sim.water), with the realistic sensor.
         const bool noisy = w != "clear";
-        plan.cases.push_back({scene, w == "clear-noisy" ? "clear" : w, noisy, sensor});
+        const std::string preset = w == "clear-noisy" ? "clear" : w == "scene" ? "" : w;
+        plan.cases.push_back({scene, preset, noisy, sensor});
       }
   const auto results = experiments::run_judged_study(plan);
   experiments::write_judged_report(o.out, results, plan, o.command,
@@ -66,7 +68,8 @@ int run_judged(const ExperimentOptions& o) {
 int run_experiments(const ExperimentOptions& o) {
   if (o.study == "judged") return run_judged(o);
   for (const auto& w : o.waters)
-    if (w == "clear-noisy") throw Error("--water clear-noisy: only the judged study has it (--study judged)");
+    if (w == "clear-noisy" || w == "scene")
+      throw Error("--water " + w + ": only the judged study has it (--study judged)");
   const Session session = open_session(o.common);
   experiments::ExperimentPlan plan;
   plan.base = session.config;
@@ -98,8 +101,9 @@ void add_experiments_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run
   cmd->add_option("--iterations", o->iterations, "Iterations per study (the thesis: 50)")
       ->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--water", o->waters,
-                  "Water conditions to study: clear (perfect sensor), clear-noisy (judged study), coastal, turbid")
-      ->check(CLI::IsMember({"clear", "clear-noisy", "coastal", "turbid"}))->capture_default_str();
+                  "Water conditions to study: clear (perfect sensor), clear-noisy (judged study), coastal, turbid, "
+                  "scene (judged study: each scene file's own water)")
+      ->check(CLI::IsMember({"clear", "clear-noisy", "coastal", "turbid", "scene"}))->capture_default_str();
   cmd->add_option("--study", o->study, "thesis: chapter 8's tables and figures; judged: grasps judged "
                   "against the full shapes")->check(CLI::IsMember({"thesis", "judged"}))->capture_default_str();
   cmd->add_option("--scenes", o->scenes, "Judged study: held-in (real objects' meshes, every pose), thesis "

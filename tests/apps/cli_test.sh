@@ -168,6 +168,15 @@ if "$BIN" experiments --study judged --scenes cross --water clear --water coasta
    grep -q "## Calibration" "$T/jd/report.md" && grep -q "cross, coastal" "$T/jd/report.md" &&
    [[ -s $T/jd/judged_cross.png ]]; then passes=$((passes + 1)); else
   echo "FAIL: judged study: $(tail -3 "$T/jd.txt")"; fails=$((fails + 1)); fi
+# --water scene: each scene file's own water. Water so dark the camera sees nothing stops the
+# detection; the same scene in coastal water is detected.
+printf 'name: murky\nvehicle: {position: [-0.819, 0, 0.519]}\ncamera_mount: {position: [0.2, 0, 0], rpy: [0, -0.6, 0]}\nwater: {attenuation: [60, 60, 60], veiling: [0.1, 0.1, 0.1]}\nobjects:\n  - {name: block, interest: true, color: [210, 25, 25], pose: {position: [0, 0, 0.035]}, parts: [{shape: box, size: [0.05, 0.09, 0.07]}]}\n' >"$T/murky.yaml"
+if "$BIN" experiments --study judged --scenes "$T/murky.yaml" --water scene --water coastal --iterations 1 \
+     --no-calibration --out "$T/jw" >/dev/null 2>"$T/jw.txt" &&
+   grep -q "murky.yaml,scene's water,1,no grasp (detection stopped),.*no finite point" "$T/jw/runs.csv" &&
+   grep -Eq "murky.yaml,coastal,1,[a-z].*,$" "$T/jw/runs.csv"; then passes=$((passes + 1)); else
+  echo "FAIL: judged study in the scene's own water: $(tail -3 "$T/jw.txt")"; fails=$((fails + 1)); fi
+expect 2 "only the judged study" -- experiments --water scene --iterations 1 --out "$T/out"
 if [[ -d "$DATA/meshes" ]]; then
   if "$BIN" experiments --study judged --scenes sugar_box_turned --water clear --iterations 1 --out "$T/jm" \
        >/dev/null 2>&1 && grep -q "sugar_box_turned, clear" "$T/jm/report.md"; then passes=$((passes + 1)); else
