@@ -25,7 +25,8 @@ struct PlaneConfig {
   float normal_angle = 30.0f;
   // The plane is removed only when it supports the rest: most points off it lie between it and
   // the sensor (a seafloor, table or wall with objects in front). When most lie behind it, seen
-  // from the sensor, it is a face of the object itself (an object-only scan) and stays.
+  // from the sensor, and they are 5 % of its inliers or more, it is a face of the object itself
+  // (an object-only scan) and stays; fewer are mismatches behind an opaque support.
   bool support_only = true;
 };
 
