@@ -12,9 +12,10 @@
 namespace uwgrasp::grasp {
 
 namespace {
-// The whole object the criterion picks among the processed cloud's connected objects;
-// `selected` becomes its largest segment.
-Cloud whole_object(const segment::Scene& scene, const segment::ObjectConfig& cfg, std::size_t& selected) {
+// The whole object the criterion picks among the processed cloud's connected objects, as
+// ascending indices into the processed cloud; `selected` becomes its largest segment.
+std::vector<std::uint32_t> whole_object(const segment::Scene& scene, const segment::ObjectConfig& cfg,
+                                        std::size_t& selected) {
   const Cloud& c = scene.pre.cloud;
   cloud::Neighbours own;
   const cloud::Neighbours* nb = &scene.pre.neighbours;
@@ -34,12 +35,12 @@ Cloud whole_object(const segment::Scene& scene, const segment::ObjectConfig& cfg
   for (const auto i : objects.points[k])
     if (scene.segmentation.label[i] >= 0) ++votes[std::size_t(scene.segmentation.label[i])];
   selected = std::size_t(std::max_element(votes.begin(), votes.end()) - votes.begin());
-  return select(c, points);
+  return points;
 }
-}  // namespace
 
-Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cfg,
-                    std::size_t& selected) {
+// The object's points as ascending indices into the processed cloud (object_points).
+std::vector<std::uint32_t> object_indices(const segment::Scene& scene, const segment::ObjectConfig& cfg,
+                                          std::size_t& selected) {
   if (scene.info.empty())
     throw Error("segmentation found no segment to grasp in the " +
                 std::to_string(scene.pre.cloud.size()) +
@@ -52,7 +53,13 @@ Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cf
     points.insert(points.end(), idx.begin(), idx.end());
   }
   std::sort(points.begin(), points.end());
-  return select(scene.pre.cloud, points);
+  return points;
+}
+}  // namespace
+
+Cloud object_points(const segment::Scene& scene, const segment::ObjectConfig& cfg,
+                    std::size_t& selected) {
+  return select(scene.pre.cloud, object_indices(scene, cfg, selected));
 }
 
 Surroundings surroundings(const segment::Scene& scene, std::vector<Eigen::Vector3f>& points,
@@ -76,10 +83,17 @@ Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   d.scene = segment::segment_scene(input, pre, seg, seed);
   d.timer = d.scene.timer;
   d.timer.start("select");
-  d.object = object_points(d.scene, seg.object, d.segment);
+  const std::vector<std::uint32_t> object = object_indices(d.scene, seg.object, d.segment);
+  d.object = select(d.scene.pre.cloud, object);
   d.timer.stop();
   const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;
-  const Surroundings around = surroundings(d.scene, d.obstacles, &input);
+  Surroundings around = surroundings(d.scene, d.obstacles, &input);
+  // The rest of the processed scene rests on the seafloor (columns.hpp); not the points outlier
+  // removal dropped (after the processed ones in d.obstacles): stray pixels stand for no column.
+  d.rests.assign(d.obstacles.size(), 0);
+  std::fill_n(d.rests.begin(), d.scene.pre.cloud.size(), char(1));
+  for (const std::uint32_t i : object) d.rests[i] = 0;
+  around.rests = d.rests;
   d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);
   return d;
 }

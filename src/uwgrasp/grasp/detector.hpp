@@ -54,6 +54,7 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
 struct Detection {
   segment::Scene scene;
   std::vector<Eigen::Vector3f> obstacles;  // the processed scene and the points outliers removed
+  std::vector<char> rests;  // per obstacle: 1 for the rest of the processed scene (Surroundings::rests)
   std::size_t segment = 0;  // the selected object's segment
   Cloud object;             // its points, camera frame
   ObjectGrasps result;

@@ -52,17 +52,6 @@ struct SolidView {
   }
 };
 
-// The solid's eight corners in L at offset t along the approach.
-std::array<Eigen::Vector3f, 8> corners(const Solid& b, const Candidate& c, float t) {
-  std::array<Eigen::Vector3f, 8> out;
-  for (int k = 0; k < 8; ++k) {
-    const Eigen::Vector3f sign((k & 1) ? 1.f : -1.f, (k & 2) ? 1.f : -1.f, (k & 4) ? 1.f : -1.f);
-    const Eigen::Vector3f g = b.centre + b.rotation * sign.cwiseProduct(b.half) - t * Eigen::Vector3f::UnitX();
-    out[static_cast<std::size_t>(k)] = c.rotation * g + c.position;
-  }
-  return out;
-}
-
 // The plane is convex and the sweep linear in t, so the corners at both ends decide.
 Hit plane_hit(const Obstacles& o, const Solid& b, const Candidate& c, float s, float tol) {
   if (!o.has_plane) return Hit::none;
@@ -131,6 +120,16 @@ Reject verdict(std::span<const Solid> solids, HitOf hit) {
 }
 }  // namespace
 
+std::array<Eigen::Vector3f, 8> corners(const Solid& b, const Candidate& c, float t) {
+  std::array<Eigen::Vector3f, 8> out;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3f sign((k & 1) ? 1.f : -1.f, (k & 2) ? 1.f : -1.f, (k & 4) ? 1.f : -1.f);
+    const Eigen::Vector3f g = b.centre + b.rotation * sign.cwiseProduct(b.half) - t * Eigen::Vector3f::UnitX();
+    out[static_cast<std::size_t>(k)] = c.rotation * g + c.position;
+  }
+  return out;
+}
+
 std::vector<Solid> vehicle_solids(const Gripper& g, const Frames& f, const ReachConfig& cfg) {
   if (!(cfg.hull_size.array() > 0.0).all() || !cfg.hull_size.allFinite())
     throw Error("grasp.reach.hull_size must be positive");
@@ -181,6 +180,13 @@ Obstacles make_obstacles(const Surroundings& s, const Frames& f, const ReachConf
     if (!drop[i]) solid.push_back(s.points[i]);
   if (!solid.empty()) o.bvh = build_bvh(points_to_level(solid, f));
   if (const auto plane = level_plane(s, f)) o.has_plane = true, o.plane = *plane;
+  if (cfg.columns && o.has_plane && s.rests.size() == s.points.size()) {
+    std::vector<Eigen::Vector3f> resting;
+    for (std::size_t i = 0; i < s.points.size(); ++i)
+      if (s.rests[i] && !drop[i]) resting.push_back(s.points[i]);
+    o.columns =
+        make_columns(points_to_level(resting, f), o.plane, s.points, f.level_from_camera.inverse());
+  }
   return o;
 }
 
@@ -189,8 +195,11 @@ Reject reach_check(const Obstacles& o, std::span<const Solid> solids, const Cand
   const float s = static_cast<float>(cfg.standoff);
   return verdict(solids, [&](std::size_t k) {
     const Hit plane = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
-    if (plane == Hit::at_grasp || o.bvh.empty()) return plane;
-    return std::max(plane, Query(o.bvh, solids[k], c, s).walk(o.bvh.top(), 0));
+    if (plane == Hit::at_grasp) return plane;
+    const Hit points =
+        o.bvh.empty() ? plane : std::max(plane, Query(o.bvh, solids[k], c, s).walk(o.bvh.top(), 0));
+    if (points == Hit::at_grasp || solids[k].at_grasp != Reject::scene_collision) return points;
+    return cuts_column(o.columns, solids[k], c) ? Hit::at_grasp : points;
   });
 }
 
@@ -208,6 +217,8 @@ Reject reach_brute(std::span<const Eigen::Vector3f> level_points, const Obstacle
     Hit worst = plane_hit(o, solids[k], c, s, static_cast<float>(cfg.floor_tolerance));
     const SolidView view(solids[k], c, s);
     for (const auto& p : level_points) worst = std::max(worst, view.hit(p));
+    if (solids[k].at_grasp == Reject::scene_collision && cuts_column_brute(o.columns, solids[k], c))
+      return Hit::at_grasp;
     return worst;
   });
 }

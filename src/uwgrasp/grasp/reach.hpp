@@ -5,11 +5,13 @@
 // against everything the camera saw - the seafloor plane the preprocessing removed and every
 // remaining point, object included - not only the object.
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <span>
 #include <vector>
 
 #include "uwgrasp/grasp/bvh.hpp"
+#include "uwgrasp/grasp/columns.hpp"
 #include "uwgrasp/grasp/feasibility.hpp"
 #include "uwgrasp/grasp/frames.hpp"
 
@@ -28,6 +30,9 @@ struct ReachConfig {
   // do not rest on the seafloor are suspended particles, not obstacles (debris.hpp); 0: none.
   double debris_size = 0.02;  // m
   double debris_gap = 0.01;   // m
+  // The rest of the scene rests on the seafloor: the hidden stretch of the column under each of
+  // its points is solid for the gripper's parts (columns.hpp). Off for a scene of overhangs.
+  bool columns = true;
 };
 
 // The rest of the scene, in the camera frame.
@@ -35,6 +40,9 @@ struct Surroundings {
   std::span<const Eigen::Vector3f> points;  // the processed cloud, object included
   bool has_plane = false;                   // the plane the preprocessing removed
   Eigen::Vector4f plane = Eigen::Vector4f::Zero();  // n.p + d = 0, |n| = 1
+  // Per point of `points` (or empty): 1 for a seen point of the rest of the scene, not of the
+  // object, which stands for a column of solid down to the plane (columns.hpp).
+  std::span<const char> rests{};
 };
 
 // An oriented box in the gripper frame G: p_G = centre + rotation * p_box, |p_box| <= half.
@@ -44,6 +52,9 @@ struct Solid {
   Eigen::Vector3f half = Eigen::Vector3f::Zero();
   Reject at_grasp = Reject::hull_collision;  // the reason when it hits at the grasp pose
 };
+
+// The solid's eight corners in L at offset t back along the approach (0: the grasp pose).
+std::array<Eigen::Vector3f, 8> corners(const Solid& b, const Candidate& c, float t = 0.0f);
 
 // The hull (from B through T_BG^-1, grown by the margin) first, then the gripper's solid parts.
 // Throws Error for a non-positive hull size, a negative standoff, margin or tolerance, or a
@@ -56,6 +67,7 @@ struct Obstacles {
   PointBvh bvh;  // empty() when the scene has no points
   bool has_plane = false;
   Eigen::Vector4f plane = Eigen::Vector4f::Zero();
+  Columns columns;  // under the rest of the scene (empty without a plane or Surroundings::rests)
 };
 // Without the debris (suspended particles) cfg describes.
 Obstacles make_obstacles(const Surroundings& s, const Frames& f, const ReachConfig& cfg = {});
@@ -64,7 +76,7 @@ std::optional<Eigen::Vector4f> level_plane(const Surroundings& s, const Frames& 
 
 // Reject::none, or why the vehicle cannot take this grasp: hull_collision (hull at the grasp
 // pose), scene_collision (a gripper part at the grasp pose hits a point that is not the object's,
-// or goes through the seafloor), approach_blocked (hull or gripper on the way in).
+// cuts a column under one, or goes through the seafloor), approach_blocked (hull or gripper on the way in).
 Reject reach_check(const Obstacles& o, std::span<const Solid> solids, const Candidate& c,
                    const ReachConfig& cfg);
 // reach_check against the seafloor plane alone (no scene points): a fraction of its cost, for

@@ -145,6 +145,7 @@ void visit_grasp(Visitor& v, grasp::GraspConfig& c) {
     v.field("floor_tolerance", c.reach.floor_tolerance, 0.0, 10.0);
     v.field("debris_size", c.reach.debris_size, 0.0, 10.0);
     v.field("debris_gap", c.reach.debris_gap, 1e-4, 1.0);
+    v.field("columns", c.reach.columns);
   });
   v.section("score", [&] { visit_score(v, c.score); });
 }
