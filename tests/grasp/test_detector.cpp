@@ -91,6 +91,33 @@ TEST(Detector, MinInliersRejectsOnlyTheSparseGrasps) {
   for (const Grasp& g : dense.grasps) EXPECT_GE(g.inliers, 40u);
 }
 
+// Grasps the model holds in fewer than min_robustness of their perturbed poses are not offered:
+// exactly those, the rest in the same order (the share does not depend on the threshold).
+TEST(Detector, GraspsUnderTheLeastRobustnessAreNotOffered) {
+  const auto obj = fixtures::render_object(fixtures::Object::barbell, {}, 30000);
+  GraspConfig cfg = for_view(obj.camera_pitch);
+  cfg.score.top = 100000;
+  cfg.score.robust.min_robustness = 0.0;
+  StageTimer t;
+  const ObjectGrasps all = find_grasps(obj.cloud, cfg, 0.0, 1, t);
+  cfg.score.robust.min_robustness = 0.5;
+  const ObjectGrasps firm = find_grasps(obj.cloud, cfg, 0.0, 1, t);
+  std::vector<std::uint32_t> kept;
+  for (const Grasp& g : all.grasps)
+    if (g.robustness >= 0.5) kept.push_back(g.candidate);
+  ASSERT_GT(all.grasps.size(), kept.size());  // some fall under the threshold
+  ASSERT_FALSE(kept.empty());
+  ASSERT_EQ(firm.grasps.size(), kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    EXPECT_EQ(firm.grasps[i].candidate, kept[i]);
+    EXPECT_GE(firm.grasps[i].robustness, 0.5);
+  }
+  const auto weak = [](const ObjectGrasps& r) {
+    return r.rejections[static_cast<std::size_t>(Reject::not_robust)];
+  };
+  EXPECT_EQ(weak(firm), weak(all) + (all.grasps.size() - kept.size()));
+}
+
 // The whole pipeline from a scene: preprocessing removes the floor, the red object is selected.
 TEST(Detector, FullPipelineOnAScene) {
   const auto obj = fixtures::render_object(fixtures::Object::barbell, {}, 20000);

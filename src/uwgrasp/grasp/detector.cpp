@@ -150,13 +150,16 @@ std::vector<Grasp> score_robust(const ModelView& view, const LevelCloud& cloud, 
     g.scores.total = robust_total(g);
   }
   refine_leaders(view, pool, all, std::span(order.data(), m), cfg.robust, seed);
-  // A grasp that holds on the model in none of its perturbed poses is not offered (not_robust):
-  // "no grasp" is the honest answer when nothing the model shows can be held (e.g. a flat box
-  // on the seafloor), not a grasp the detector itself expects to fail. The candidates past the
-  // robust.candidates best-predicted are not measured: still feasible, but not offered either.
+  // A grasp that holds on the model in none, or too few, of its perturbed poses is not offered
+  // (not_robust): "no grasp" is the honest answer when nothing the model shows can be held (e.g.
+  // a flat box on the seafloor), not a grasp the detector itself expects to fail. The candidates
+  // past the robust.candidates best-predicted are not measured: still feasible, but not offered.
+  const auto weak = [&](const Grasp& g) {
+    return g.robustness <= 0.0 || g.robustness < cfg.robust.min_robustness;
+  };
   for (std::size_t k = 0; k < m; ++k)
-    if (all[order[k]].robustness <= 0.0) pool.checks[all[order[k]].candidate].reason = Reject::not_robust;
-  std::erase_if(all, [](const Grasp& g) { return g.robustness <= 0.0; });
+    if (weak(all[order[k]])) pool.checks[all[order[k]].candidate].reason = Reject::not_robust;
+  std::erase_if(all, weak);
   rank(all, cfg.top);
   return all;
 }

@@ -31,7 +31,7 @@ enum class Reject : std::uint8_t {
   scene_collision,   // a gripper part hits the scene (not the object) or the seafloor there
   approach_blocked,  // hull or gripper hits the scene on the way in from the standoff
   cannot_hold,       // holding the vehicle's attitude needs more than its thrusters give
-  not_robust,        // holds on the object's model in none of its perturbed poses (robust.hpp)
+  not_robust,        // holds on the model in under robust.min_robustness of its perturbed poses
 };
 inline constexpr int kRejectKinds = 16;
 const char* reject_name(Reject r);
