@@ -103,7 +103,7 @@ void print_best(const grasp::Grasp& g, const grasp::Frames& f, const grasp::Scor
   if (s.mode == grasp::ScoreMode::robust)
     std::printf("  on the object's model: holds at mu %.2f in %.0f %% of %u poses perturbed by %.0f mm and "
                 "%.0f deg (q_fc %.3f); contacts %s and %s\n", s.robust.mu, 100 * g.robustness,
-                s.robust.samples, 1000 * s.robust.sigma_position, s.robust.sigma_angle * 180 / std::numbers::pi,
+                g.robust_poses, 1000 * s.robust.sigma_position, s.robust.sigma_angle * 180 / std::numbers::pi,
                 g.force_closure, g.contact_seen[0] ? "seen" : "unseen", g.contact_seen[1] ? "seen" : "unseen");
 }
 

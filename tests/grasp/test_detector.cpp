@@ -116,6 +116,10 @@ TEST(Detector, GraspsUnderTheLeastRobustnessAreNotOffered) {
     return r.rejections[static_cast<std::size_t>(Reject::not_robust)];
   };
   EXPECT_EQ(weak(firm), weak(all) + (all.grasps.size() - kept.size()));
+  // The best was measured again (refine): its share is over every pose it was measured on.
+  const std::uint32_t first = cfg.score.robust.samples, both = first + cfg.score.robust.refine_samples;
+  EXPECT_EQ(all.grasps.front().robust_poses, both);
+  for (const Grasp& g : all.grasps) EXPECT_TRUE(g.robust_poses == first || g.robust_poses == both);
 }
 
 // The whole pipeline from a scene: preprocessing removes the floor, the red object is selected.

@@ -118,6 +118,7 @@ void refine_leaders(const ModelView& view, const Pool& pool, std::vector<Grasp>&
     for (std::size_t j = 0; j < next.size(); ++j) {
       Grasp& g = all[next[j]];
       g.robustness = (g.robustness * n0 + more[j] * n1) / (n0 + n1);
+      g.robust_poses = cfg.samples + cfg.refine_samples;
       g.scores.total = robust_total(g);
       refined[next[j]] = 1;
     }
@@ -147,6 +148,7 @@ std::vector<Grasp> score_robust(const ModelView& view, const LevelCloud& cloud, 
   for (std::size_t k = 0; k < m; ++k) {
     Grasp& g = all[order[k]];
     g.robustness = share[k];
+    g.robust_poses = cfg.robust.samples;
     g.scores.total = robust_total(g);
   }
   refine_leaders(view, pool, all, std::span(order.data(), m), cfg.robust, seed);

@@ -69,6 +69,7 @@ struct Grasp {
   double hold_cost = std::numeric_limits<double>::quiet_NaN();  // utilisation; NaN: not computed
   // robust mode: the predicted force-closure score q_fc and the robustness on the model
   double force_closure = 0.0, robustness = 0.0;
+  std::uint32_t robust_poses = 0;  // the perturbed poses its robustness was measured on
 };
 
 // Scores every feasible candidate (points and normals in L, indices as in the checks), in
