@@ -65,7 +65,8 @@ VehicleRun run_vehicle(const grasp::Detection& d, const grasp::Grasp& g, const i
   std::vector<Eigen::Vector3f> points;
   grasp::Surroundings around = grasp::surroundings(d.scene, points);
   // The detector's columns under the rest of the scene (its processed points come first).
-  if (d.rests.size() >= points.size()) around.rests = std::span<const char>(d.rests).first(points.size());
+  if (d.rests.size() >= points.size())
+    around.rests = std::span<const char>(d.rests).first(points.size());
   const grasp::Obstacles o = grasp::make_obstacles(around, d.result.frames, cfg.grasp.reach);
   const auto solids = grasp::vehicle_solids(gripper, d.result.frames, cfg.grasp.reach);
   grasp::Candidate c;

@@ -11,6 +11,14 @@ namespace uwgrasp::grasp {
 namespace {
 constexpr std::size_t kMaxCells = std::size_t(1) << 22;
 
+// Bounds of points' feet in the plane's (u, v) coordinates.
+struct Rect {
+  float lo_u = std::numeric_limits<float>::max(), lo_v = lo_u, hi_u = -lo_u, hi_v = -lo_u;
+  void add(float a, float b) {
+    lo_u = std::min(lo_u, a), hi_u = std::max(hi_u, a), lo_v = std::min(lo_v, b), hi_v = std::max(hi_v, b);
+  }
+};
+
 // Solid's own frame from L at the grasp pose: p_box = M p + o.
 struct BoxFrame {
   Eigen::Matrix3f M;
@@ -59,11 +67,9 @@ Columns make_columns(std::span<const Eigen::Vector3f> level_points, const Eigen:
   for (const Eigen::Vector3f& p : level_points)
     if (n.dot(p) + plane[3] > 0.0f) above.push_back(p);
   if (above.empty()) return out;
-  float lo_u = std::numeric_limits<float>::max(), lo_v = lo_u, hi_u = -lo_u, hi_v = -lo_u;
-  for (const Eigen::Vector3f& p : above) {
-    const float a = out.u.dot(p), b = out.v.dot(p);
-    lo_u = std::min(lo_u, a), hi_u = std::max(hi_u, a), lo_v = std::min(lo_v, b), hi_v = std::max(hi_v, b);
-  }
+  Rect r;
+  for (const Eigen::Vector3f& p : above) r.add(out.u.dot(p), out.v.dot(p));
+  const float lo_u = r.lo_u, lo_v = r.lo_v, hi_u = r.hi_u, hi_v = r.hi_v;
   // Coarser cells for a scene too wide for the grid.
   while (double(hi_u - lo_u) / cell * double(hi_v - lo_v) / cell > double(kMaxCells)) cell *= 2.0f;
   out.cell = cell, out.u0 = lo_u, out.v0 = lo_v;
@@ -90,16 +96,16 @@ Columns make_columns(std::span<const Eigen::Vector3f> level_points, const Eigen:
 bool cuts_column(const Columns& cols, const Solid& solid, const Candidate& c) {
   if (cols.empty()) return false;
   const Eigen::Vector3f n = cols.plane.head<3>();
-  float lo_u = std::numeric_limits<float>::max(), lo_v = lo_u, hi_u = -lo_u, hi_v = -lo_u, low = lo_u;
+  Rect r;
+  float low = std::numeric_limits<float>::max();
   for (const Eigen::Vector3f& p : corners(solid, c)) {  // at the grasp pose
-    const float a = cols.u.dot(p), b = cols.v.dot(p);
-    lo_u = std::min(lo_u, a), hi_u = std::max(hi_u, a), lo_v = std::min(lo_v, b), hi_v = std::max(hi_v, b);
+    r.add(cols.u.dot(p), cols.v.dot(p));
     low = std::min(low, n.dot(p) + cols.plane[3]);
   }
-  const int i0 = std::max(0, int(std::floor((lo_u - cols.u0) / cols.cell)));
-  const int i1 = std::min(cols.nu - 1, int(std::floor((hi_u - cols.u0) / cols.cell)));
-  const int j0 = std::max(0, int(std::floor((lo_v - cols.v0) / cols.cell)));
-  const int j1 = std::min(cols.nv - 1, int(std::floor((hi_v - cols.v0) / cols.cell)));
+  const int i0 = std::max(0, int(std::floor((r.lo_u - cols.u0) / cols.cell)));
+  const int i1 = std::min(cols.nu - 1, int(std::floor((r.hi_u - cols.u0) / cols.cell)));
+  const int j0 = std::max(0, int(std::floor((r.lo_v - cols.v0) / cols.cell)));
+  const int j1 = std::min(cols.nv - 1, int(std::floor((r.hi_v - cols.v0) / cols.cell)));
   const BoxFrame f(solid, c, n);
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
