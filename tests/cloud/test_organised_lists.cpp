@@ -108,6 +108,45 @@ TEST(Organised, MeanDistancesAreTheWindowsKNearestByBruteForce) {
   EXPECT_GT(mean[100], 20 * mean[500]);
 }
 
+// The same against a brute force where many distances tie (a grid of whole millimetres), with
+// holes, at three window sizes and k from 1 to more than a window holds: the k smallest are
+// chosen by rank (a whole 5 x 5 window) or by insertion (a window that must grow) alike.
+TEST(Organised, MeanDistancesWithTiesHolesAndAnyKAreTheBruteForces) {
+  constexpr int kSide = 24;
+  Cloud c;
+  c.width = c.height = kSide;
+  Rng rng(11, 0);
+  for (int v = 0; v < kSide; ++v)
+    for (int u = 0; u < kSide; ++u)
+      c.points.emplace_back(0.001f * float(u), 0.001f * float(v), 1.0f + 0.001f * float(rng.below(3)));
+  for (int i = 0; i < 150; ++i) c.points[rng.below(c.size())].x() = std::nanf("");
+  std::vector<std::uint32_t> pixels;
+  const PixelMap map = full_map(c, &pixels);
+  const Cloud pts = select(c, pixels);
+  for (const std::uint32_t h : {1u, 2u, 3u})
+    for (const std::uint32_t k : {1u, 5u, 10u, 24u, 60u}) {
+      const std::vector<float> mean = window_mean_distances(pts.points, map, h, k);
+      for (std::size_t j = 0; j < pts.size(); ++j) {
+        const int u = int(map.pixel[j] % kSide), v = int(map.pixel[j] / kSide);
+        std::vector<float> d;
+        for (int w = int(h); w <= 3 * int(h) && (w == int(h) || d.size() < k); ++w) {
+          d.clear();
+          for (int dv = -w; dv <= w; ++dv)
+            for (int du = -w; du <= w; ++du)
+              if ((du || dv) && u + du >= 0 && u + du < kSide && v + dv >= 0 && v + dv < kSide)
+                if (const auto s = map.slot[std::size_t((v + dv) * kSide + u + du)]; s >= 0)
+                  d.push_back((pts.points[std::size_t(s)] - pts.points[j]).norm());
+        }
+        std::sort(d.begin(), d.end());
+        const std::size_t n = std::min<std::size_t>(k, d.size());
+        double sum = 0;
+        for (std::size_t e = 0; e < n; ++e) sum += d[e];
+        if (n == 0) EXPECT_TRUE(std::isinf(mean[j])) << j;
+        else EXPECT_NEAR(mean[j], sum / double(n), 1e-7) << "h " << h << ", k " << k << ", point " << j;
+      }
+    }
+}
+
 // A pixel with no other pixel in play within the widest window (13 x 13) is a flying pixel:
 // its statistic is infinity, it is removed, and it is left out of the statistic's mean and
 // deviation, so flying pixels do not widen the threshold for the rest (a k-d tree search finds
