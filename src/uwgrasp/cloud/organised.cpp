@@ -21,14 +21,14 @@ constexpr std::uint32_t kGrowth = 3;
 // The sum of the square roots of the k smallest of v[0, n), n >= k, without a branch on the
 // values: v[i] is among them when fewer than k others precede it (smaller, or equal and earlier).
 // A window's 24 pixels, for its 10 nearest, took an insertion sort's mispredicted branches
-// longer than the distances themselves. The sum is of at most a window's floats in double:
-// exact, whatever the order.
+// longer than the distances themselves. The k roots are summed in double in index order, not
+// ascending: the frames' grasps are byte-identical to the sorted sum's.
 template <std::size_t N = 0>
 double sum_of_smallest_roots(const float* v, std::size_t n, std::size_t k) {
   if constexpr (N > 0) n = N;  // a whole 5 x 5 window: loops of known length vectorise
   double sum = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    std::size_t before = 0;
+    std::uint32_t before = 0;  // 32-bit: twice the lanes of a 64-bit count
     for (std::size_t e = 0; e < i; ++e) before += v[e] <= v[i];
     for (std::size_t e = i + 1; e < n; ++e) before += v[e] < v[i];
     sum += before < k ? double(std::sqrt(v[i])) : 0.0;
