@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 #include "uwgrasp/cloud/organised_window.hpp"
@@ -19,21 +20,27 @@ namespace {
 constexpr std::uint32_t kGrowth = 3;
 
 // The sum of the square roots of the k smallest of v[0, n), n >= k, without a branch on the
-// values: v[i] is among them when fewer than k others precede it (smaller, or equal and earlier).
-// A window's 24 pixels, for its 10 nearest, took an insertion sort's mispredicted branches
-// longer than the distances themselves. The k roots are summed in double in index order, not
-// ascending: the frames' grasps are byte-identical to the sorted sum's.
+// values (a window's 24 pixels, for its 10 nearest, took an insertion sort's mispredicted
+// branches longer than the distances themselves): v[i] is in when fewer than k others are
+// strictly smaller. Values tied at the k-th smallest are then all in; the surplus are equal to
+// the largest one in, and are taken off again.
 template <std::size_t N = 0>
 double sum_of_smallest_roots(const float* v, std::size_t n, std::size_t k) {
   if constexpr (N > 0) n = N;  // a whole 5 x 5 window: loops of known length vectorise
+  // 32-bit counts: twice the lanes of 64-bit ones; a window has at most 15 x 15 - 1 pixels.
+  std::array<std::uint32_t, (N > 0 ? N : 224)> smaller{};
+  for (std::size_t e = 0; e < n; ++e)
+    for (std::size_t i = 0; i < n; ++i) smaller[i] += v[e] < v[i];
   double sum = 0.0;
+  std::size_t in = 0;
+  float top = 0.0f;
   for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t before = 0;  // 32-bit: twice the lanes of a 64-bit count
-    for (std::size_t e = 0; e < i; ++e) before += v[e] <= v[i];
-    for (std::size_t e = i + 1; e < n; ++e) before += v[e] < v[i];
-    sum += before < k ? double(std::sqrt(v[i])) : 0.0;
+    const bool take = smaller[i] < k;
+    sum += take ? double(std::sqrt(v[i])) : 0.0;
+    in += take;
+    top = take ? std::max(top, v[i]) : top;
   }
-  return sum;
+  return sum - double(in - k) * double(std::sqrt(top));
 }
 
 // Offers d2 to best, the k smallest so far in ascending order.
