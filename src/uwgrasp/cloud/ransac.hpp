@@ -47,7 +47,8 @@ double ransac_iterations(double p, double w, int n = 3);
 // all collinear) gives found = false.
 PlaneResult fit_plane(const Cloud& in, const PlaneConfig& cfg, std::uint64_t seed);
 
-// Least-squares plane through points (eigenvector of the smallest covariance eigenvalue).
-Eigen::Vector4f least_squares_plane(const Cloud& in, const std::vector<std::uint32_t>& idx);
+// Least-squares plane through the points within tol of `plane` (eigenvector of the smallest
+// covariance eigenvalue); `plane` itself when fewer than three are.
+Eigen::Vector4f least_squares_plane(const Cloud& in, const Eigen::Vector4f& plane, float tol);
 
 }  // namespace uwgrasp::cloud
