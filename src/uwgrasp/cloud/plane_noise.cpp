@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <span>
 #include <vector>
 
 #include "uwgrasp/cloud/indices.hpp"
@@ -18,7 +19,7 @@ namespace {
 // buckets over [0, top] first: only the bucket that holds it is then selected from (a frame's
 // floor bin holds 10^5 distances; nth_element over all of them took ~1 ms a bin). Values are
 // in [0, top]; the bucket of a value never decreases with it, so the answer is exact.
-double median(std::vector<double>& v, double top) {
+double median(std::span<const double> v, double top) {
   constexpr std::size_t kBuckets = 1024;
   const std::size_t k = v.size() / 2;
   const double scale = top > 0.0 ? double(kBuckets) / top : 0.0;
@@ -36,37 +37,58 @@ double median(std::vector<double>& v, double top) {
   return *mid;
 }
 
-long bin_of(double range, double bin) { return std::lround(std::floor(range / bin)); }
+// floor(range / bin) without std::floor's library call (x86-64 before SSE4.1): ranges are
+// finite and non-negative, where the conversion's truncation is the floor.
+long bin_of(double range, double bin) { return long(range / bin); }
 double bin_centre(long b, double bin) { return (double(b) + 0.5) * bin; }
 
 // A range bin: its index and the distances collected in it.
 struct Bin {
   long key = 0;
-  std::vector<double> values;
+  std::span<const double> values;
 };
 
-// The band's distances grouped by range bin, bins ascending. A bin's median does not depend on
-// the order of its values.
-std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<double>& dist) {
+// The band's distances grouped by range bin, bins ascending, into `flat` (each bin's distances
+// contiguous, in band order): a counting sort over fixed blocks of the band, in parallel (a
+// serial pass of push_backs took 0.3 ms of a frame's 150k band points). A bin's median does
+// not depend on the order of its values.
+std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<double>& dist,
+                       std::vector<double>& flat) {
   std::vector<Bin> bins;
   if (bin_key.empty()) return bins;
   const auto [lo, hi] = std::minmax_element(bin_key.begin(), bin_key.end());
+  const std::size_t span = std::size_t(*hi - *lo + 1);
   if (*hi - *lo >= 4096) {  // not a frame's few metres: a map of the bins in use
     std::map<long, std::vector<double>> by_key;
     for (std::size_t j = 0; j < bin_key.size(); ++j) by_key[bin_key[j]].push_back(dist[j]);
-    for (auto& [k, v] : by_key) bins.push_back({k, std::move(v)});
+    for (auto& [k, v] : by_key) flat.insert(flat.end(), v.begin(), v.end());
+    std::size_t at = 0;
+    for (auto& [k, v] : by_key) bins.push_back({k, std::span<const double>(flat).subspan(at, v.size())}), at += v.size();
     return bins;
   }
-  std::vector<std::size_t> size(std::size_t(*hi - *lo + 1), 0);
-  for (const long k : bin_key) ++size[std::size_t(k - *lo)];
-  std::vector<std::size_t> slot(size.size());
-  for (std::size_t b = 0; b < size.size(); ++b) {
-    if (size[b] == 0) continue;
-    slot[b] = bins.size();
-    bins.push_back({*lo + long(b), {}});
-    bins.back().values.reserve(size[b]);
+  constexpr std::size_t kBlock = std::size_t(1) << 14;
+  const std::size_t blocks = (bin_key.size() + kBlock - 1) / kBlock;
+  const auto block_end = [&](std::size_t c) { return std::min(bin_key.size(), (c + 1) * kBlock); };
+  std::vector<std::size_t> at(blocks * span, 0);  // block c's count, then its start, per bin
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t c) {
+    for (std::size_t j = c * kBlock; j < block_end(c); ++j) ++at[c * span + std::size_t(bin_key[j] - *lo)];
+  });
+  std::vector<std::size_t> size(span, 0);
+  std::size_t start = 0;
+  for (std::size_t b = 0; b < span; ++b)
+    for (std::size_t c = 0; c < blocks; ++c) {
+      const std::size_t n = at[c * span + b];
+      at[c * span + b] = start, start += n, size[b] += n;
+    }
+  flat.resize(bin_key.size());
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t c) {
+    for (std::size_t j = c * kBlock; j < block_end(c); ++j) flat[at[c * span + std::size_t(bin_key[j] - *lo)]++] = dist[j];
+  });
+  start = 0;
+  for (std::size_t b = 0; b < span; ++b) {
+    if (size[b] > 0) bins.push_back({*lo + long(b), std::span<const double>(flat).subspan(start, size[b])});
+    start += size[b];
   }
-  for (std::size_t j = 0; j < bin_key.size(); ++j) bins[slot[std::size_t(bin_key[j] - *lo)]].values.push_back(dist[j]);
   return bins;
 }
 
@@ -84,7 +106,8 @@ NoiseModel plane_noise(const Cloud& cloud, const Eigen::Vector4f& plane, float b
     bin_key[j] = bin_of((cloud.points[in_band[j]] - cloud.viewpoint).norm(), bin);
     band_dist[j] = dist(in_band[j]);
   });
-  std::vector<Bin> bins = group(bin_key, band_dist);
+  std::vector<double> flat;
+  const std::vector<Bin> bins = group(bin_key, band_dist, flat);
   std::vector<double> sigma(bins.size(), 0.0);
   tbb::parallel_for(std::size_t(0), bins.size(), [&](std::size_t b) {
     if (bins[b].values.size() >= min_points) sigma[b] = 1.4826 * median(bins[b].values, double(band));
