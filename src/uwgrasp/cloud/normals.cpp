@@ -4,6 +4,8 @@
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "uwgrasp/cloud/kdtree.hpp"
@@ -11,17 +13,58 @@
 
 namespace uwgrasp::cloud {
 
+SmallestEigen smallest_eigen(const Eigen::Matrix3d& cov) {
+  SmallestEigen out;
+  const double scale = cov.cwiseAbs().maxCoeff();
+  if (scale > 0.0 && std::isfinite(scale)) {
+    const Eigen::Matrix3d m = cov / scale;
+    // Newton's method on det(l I - m) = l^3 - c2 l^2 + c1 l - c0 from l = 0: for a covariance
+    // (eigenvalues >= 0) the polynomial is increasing and concave below its smallest root, so
+    // the steps rise to it without overshooting. Quadratic for a separate root (a surface's
+    // normal: a few steps); slow only where the root is (nearly) double - left to Eigen.
+    const double c2 = m.trace(),
+                 c1 = m(0, 0) * m(1, 1) + m(0, 0) * m(2, 2) + m(1, 1) * m(2, 2) - m(0, 1) * m(0, 1) -
+                      m(0, 2) * m(0, 2) - m(1, 2) * m(1, 2),
+                 c0 = m.determinant();
+    double l = 0.0;
+    bool converged = false;
+    for (int it = 0; it < 12 && !converged; ++it) {
+      const double p = ((l - c2) * l + c1) * l - c0, dp = (3.0 * l - 2.0 * c2) * l + c1;
+      if (!(dp > 0.0)) break;
+      const double step = p / dp;
+      l -= step;
+      converged = std::abs(step) <= 1e-10 * c2;
+    }
+    // The eigenvector: the largest cross product of two rows of m - l I (each orthogonal to it).
+    const Eigen::Matrix3d r = m - l * Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d x[3] = {r.row(0).cross(r.row(1)), r.row(0).cross(r.row(2)), r.row(1).cross(r.row(2))};
+    int best = 0;
+    for (int i = 1; i < 3; ++i)
+      if (x[i].squaredNorm() > x[best].squaredNorm()) best = i;
+    // A cross product that small means a (nearly) double smallest root: left to Eigen.
+    if (converged && x[best].squaredNorm() > 1e-16 * c2 * c2 * c2 * c2) {
+      out.value = std::max(0.0, l) * scale;
+      out.trace = cov.trace();  // the eigenvalues' sum, exactly
+      out.vector = x[best].normalized();
+      return out;
+    }
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(cov);
+  out.value = std::max(0.0, es.eigenvalues()[0]);  // ascending
+  out.trace = cov.trace();
+  out.vector = es.eigenvectors().col(0);
+  return out;
+}
+
 PointNormal normal_from_covariance(const Eigen::Matrix3d& cov, const Eigen::Vector3f& at,
                                   const Eigen::Vector3f& viewpoint) {
   PointNormal out;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(cov);
-  const Eigen::Vector3d l = es.eigenvalues().cwiseMax(0.0);  // ascending
-  Eigen::Vector3f n = es.eigenvectors().col(0).cast<float>().normalized();
+  const SmallestEigen e = smallest_eigen(cov);
+  Eigen::Vector3f n = e.vector.cast<float>().normalized();
   if (n.dot(viewpoint - at) < 0.0f) n = -n;  // eq. 4.6
-  const double sum = l.sum();
   out.normal = n;
-  out.curvature = sum > 0.0 ? static_cast<float>(l[0] / sum) : 0.0f;  // eq. 4.7
+  out.curvature = e.trace > 0.0 ? static_cast<float>(e.value / e.trace) : 0.0f;  // eq. 4.7
   return out;
 }
 
