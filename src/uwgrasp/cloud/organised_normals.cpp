@@ -17,13 +17,15 @@ namespace uwgrasp::cloud {
 using namespace window_detail;
 
 namespace {
-// Marks the points whose whole window is surely in play and continuous without listing it:
-// every window pixel in the frame and in play, and the window's range spread about the centre,
-// max(r_max - r_j, r_j - r_min), within the continuity allowance of a one-pixel step at r_min
-// (the least allowance any window pixel gets; 0.999 of it against rounding). A sliding max and
-// min over a dense image of ranges (+inf where no point is in play, so the max flags a gap)
-// costs a few compares per pixel where a list costs (2h + 1)^2 pixel tests (normals stage
-// 6.9 -> 5.3 ms on mOSD_learn0, with the rows skipped below). The points it leaves unmarked are listed as before.
+// Marks the points whose window's in-play pixels are surely all continuous with it, without
+// listing them: the window in the frame, and its range spread about the centre,
+// max(r_max - r_j, r_j - r_min) over the pixels in play, within the continuity allowance of a
+// one-pixel step at r_min (the least allowance any window pixel gets; 0.999 of it against
+// rounding). Pixels out of play (holes, the removed plane) are left out of the sums as they are
+// out of a list, so a window with holes but no depth step takes the running sums too. A sliding
+// max and min over a dense image of ranges costs a few compares per pixel where a list costs
+// (2h + 1)^2 pixel tests (normals stage 6.9 -> 5.3 ms on mOSD_learn0, with the rows skipped
+// below). The points it leaves unmarked are listed as before.
 std::vector<char> surely_full(const PixelMap& map, const Ranges& range, std::size_t h, float depth_change) {
   const std::size_t W = map.width, H = map.height;
   constexpr float inf = std::numeric_limits<float>::infinity();
@@ -33,12 +35,22 @@ std::vector<char> surely_full(const PixelMap& map, const Ranges& range, std::siz
   std::vector<float> img(W * H, inf);
   const std::unique_ptr<float[]> lo(new float[W * H]), hi(new float[W * H]);
   tbb::parallel_for(std::size_t(0), map.pixel.size(), [&](std::size_t j) { img[map.pixel[j]] = range.r[j]; });
-  // Across the rows, then down the columns, over the pixels whose window lies in the frame.
+  // Across the rows, then down the columns, over the pixels whose window lies in the frame and
+  // whose column a point within h rows has (a frame's objects, once the plane stage took the
+  // table, fill a fraction of it: the whole rows took a fifth of the stage on mOSD_learn0).
+  // A pixel out of play is +inf to the min and -inf to the max.
+  std::vector<std::size_t> first(H, W), last(H, 0);  // each row's in-play columns
+  for (const std::uint32_t p : map.pixel)
+    first[p / W] = std::min<std::size_t>(first[p / W], p % W), last[p / W] = std::max<std::size_t>(last[p / W], p % W);
   tbb::parallel_for(std::size_t(0), H, [&](std::size_t v) {
     const float* row = &img[v * W];
-    for (std::size_t u = h; u + h < W; ++u) {
-      float a = row[u - h], b = a;
-      for (std::size_t e = u - h + 1; e <= u + h; ++e) a = std::min(a, row[e]), b = std::max(b, row[e]);
+    std::size_t from = W, to = 0;
+    for (std::size_t e = v < h ? 0 : v - h; e <= std::min(H - 1, v + h); ++e)
+      from = std::min(from, first[e]), to = std::max(to, last[e]);
+    for (std::size_t u = std::max(h, from); u + h < W && u <= to; ++u) {
+      float a = inf, b = -inf;
+      for (std::size_t e = u - h; e <= u + h; ++e)
+        a = std::min(a, row[e]), b = std::max(b, row[e] == inf ? -inf : row[e]);
       lo[v * W + u] = a, hi[v * W + u] = b;
     }
   });
@@ -46,10 +58,10 @@ std::vector<char> surely_full(const PixelMap& map, const Ranges& range, std::siz
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       const std::size_t u = map.pixel[j] % W, v = map.pixel[j] / W;
       if (u < h || u + h >= W || v < h || v + h >= H) continue;
-      float a = inf, b = 0.0f;
+      float a = inf, b = -inf;  // the centre is in play: both end finite
       for (std::size_t e = v - h; e <= v + h; ++e) a = std::min(a, lo[e * W + u]), b = std::max(b, hi[e * W + u]);
       const float rj = range.r[j];
-      full[j] = b < inf && std::max(b - rj, rj - a) <= 0.999f * depth_change * a;
+      full[j] = std::max(b - rj, rj - a) <= 0.999f * depth_change * a;
     }
   });
   return full;
@@ -80,7 +92,7 @@ struct Moments {
 // Separable running sums over the rows [v0, v1) of the frame: column sums over the window's
 // rows roll down, and a sum over the window's columns slides along each row, so a pixel costs
 // the same whatever the window. Calls at(j, moments) for every point j whose window
-// it holds whole (full[j]: every window pixel in play and continuous).
+// it takes (full[j]: the window in the frame and its in-play pixels continuous).
 template <class At>
 void window_moments(const Cloud& cloud, const PixelMap& map, const std::vector<char>& full,
                     std::size_t h, const Eigen::Vector3d& origin, std::size_t v0, std::size_t v1,
@@ -157,8 +169,10 @@ void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cf
     window_moments(cloud, map, full, h, origin, b * kRows,
                    std::min<std::size_t>(map.height, (b + 1) * kRows),
                    [&](std::size_t j, const Moments& m) {
-                     store(j, normal_from_covariance(m.covariance(), cloud.points[j],
-                                                     cloud.viewpoint));
+                     // Fewer than three pixels in play: no normal, as from a list.
+                     store(j, m.s[0] < 3.0 ? PointNormal{}
+                                           : normal_from_covariance(m.covariance(), cloud.points[j],
+                                                                    cloud.viewpoint));
                    });
   });
 }
