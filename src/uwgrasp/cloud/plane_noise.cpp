@@ -37,9 +37,12 @@ double median(std::span<const double> v, double top) {
   return *mid;
 }
 
-// floor(range / bin) without std::floor's library call (x86-64 before SSE4.1): ranges are
-// finite and non-negative, where the conversion's truncation is the floor.
-long bin_of(double range, double bin) { return long(range / bin); }
+// floor(range / bin): by the conversion's truncation where that is the floor (ranges are not
+// negative; std::floor is a library call on x86-64 before SSE4.1), else as std::lround would.
+long bin_of(double range, double bin) {
+  const double x = range / bin;
+  return x >= 0.0 && x < 0x1p52 ? long(x) : std::lround(std::floor(x));
+}
 double bin_centre(long b, double bin) { return (double(b) + 0.5) * bin; }
 
 // A range bin: its index and the distances collected in it.

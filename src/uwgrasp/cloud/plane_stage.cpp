@@ -20,9 +20,10 @@ namespace {
 // Points behind a plane, as a share of its inliers, that are too few to make it an object's face.
 constexpr double kFewBehind = 0.05;
 
-// std::int64_t(std::floor(x)) for a finite x of a cell index's size, without a library call
+// std::int64_t(std::floor(x)) without a library call where |x| is of a cell index's size
 // (std::floor is one on x86-64 before SSE4.1; two per point, 300k points a frame).
 std::int64_t floor_int(float x) {
+  if (!(std::abs(x) < 0x1p62f)) return std::int64_t(std::floor(x));  // as before, elsewhere
   const auto t = std::int64_t(x);  // towards zero
   return t - std::int64_t(float(t) > x);
 }
