@@ -129,14 +129,18 @@ bool takes_organised_path(const Cloud& in, const PreprocessConfig& cfg) {
          cfg.normals.radius <= 0.0f;
 }
 
-// The pixel of every point still in play, from the input map (input index = pixel index).
+// The pixel of every point still in play, from the input map (input index = pixel index): the
+// map's slots are the input map itself, copied rather than filled and scattered again.
 PixelMap pixels_in_play(const Cloud& in, const std::vector<std::int32_t>& output_of_input,
                         std::size_t size) {
-  std::vector<std::uint32_t> pixel(size);
+  PixelMap m;
+  m.width = in.width, m.height = in.height;
+  m.slot = output_of_input;
+  m.pixel.resize(size);
   tbb::parallel_for(std::size_t(0), output_of_input.size(), [&](std::size_t i) {
-    if (output_of_input[i] >= 0) pixel[std::size_t(output_of_input[i])] = std::uint32_t(i);
+    if (output_of_input[i] >= 0) m.pixel[std::size_t(output_of_input[i])] = std::uint32_t(i);
   });
-  return pixel_map(in.width, in.height, std::move(pixel));
+  return m;
 }
 
 // Invalid values (4.1.1) and the range crop in one parallel pass that keeps each point's pixel.
