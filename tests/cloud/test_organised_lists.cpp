@@ -118,7 +118,8 @@ TEST(Organised, MeanDistancesWithTiesHolesAndAnyKAreTheBruteForces) {
   Rng rng(11, 0);
   for (int v = 0; v < kSide; ++v)
     for (int u = 0; u < kSide; ++u)
-      c.points.emplace_back(0.001f * float(u), 0.001f * float(v), 1.0f + 0.001f * float(rng.below(3)));
+      c.points.emplace_back(0.001f * float(u), 0.001f * float(v),
+                            1.0f + 0.001f * float(rng.below(3)));
   for (int i = 0; i < 150; ++i) c.points[rng.below(c.size())].x() = std::nanf("");
   std::vector<std::uint32_t> pixels;
   const PixelMap map = full_map(c, &pixels);
@@ -142,7 +143,9 @@ TEST(Organised, MeanDistancesWithTiesHolesAndAnyKAreTheBruteForces) {
         double sum = 0;
         for (std::size_t e = 0; e < n; ++e) sum += d[e];
         if (n == 0) EXPECT_TRUE(std::isinf(mean[j])) << j;
-        else EXPECT_NEAR(mean[j], sum / double(n), 1e-7) << "h " << h << ", k " << k << ", point " << j;
+        else
+          EXPECT_NEAR(mean[j], sum / double(n), 1e-7)
+              << "h " << h << ", k " << k << ", point " << j;
       }
     }
 }

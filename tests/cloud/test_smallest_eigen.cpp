@@ -16,7 +16,8 @@ namespace uwgrasp::cloud {
 namespace {
 Eigen::Matrix3d covariance(const Eigen::Vector3d& eigenvalues, Rng& rng) {
   const Eigen::Quaterniond q(Eigen::Vector4d(rng.uniform() - 0.5, rng.uniform() - 0.5,
-                                             rng.uniform() - 0.5, rng.uniform() - 0.5).normalized());
+                                             rng.uniform() - 0.5, rng.uniform() - 0.5)
+                                 .normalized());
   const Eigen::Matrix3d r = q.toRotationMatrix();
   return r * eigenvalues.asDiagonal() * r.transpose();
 }
@@ -25,9 +26,9 @@ Eigen::Matrix3d covariance(const Eigen::Vector3d& eigenvalues, Rng& rng) {
 TEST(SmallestEigen, MatchesEigensSolverAndIsAnEigenpair) {
   Rng rng(5, 0);
   const std::vector<Eigen::Vector3d> spectra = {
-      {1e-4, 0.5, 1.0}, {0.01, 0.02, 1.0}, {0.0, 0.3, 1.0},  {0.2, 0.2, 1.0},  {0.2, 0.2 + 1e-9, 1.0},
-      {0.5, 1.0, 1.0},  {1.0, 1.0, 1.0},   {0.0, 0.0, 1.0},  {1e-9, 1.0, 1.0}, {0.33, 0.331, 0.332},
-      {1e-7, 1e-7, 1.0}, {0.4, 0.6, 0.61}};
+      {1e-4, 0.5, 1.0},       {0.01, 0.02, 1.0},    {0.0, 0.3, 1.0},   {0.2, 0.2, 1.0},
+      {0.2, 0.2 + 1e-9, 1.0}, {0.5, 1.0, 1.0},      {1.0, 1.0, 1.0},   {0.0, 0.0, 1.0},
+      {1e-9, 1.0, 1.0},       {0.33, 0.331, 0.332}, {1e-7, 1e-7, 1.0}, {0.4, 0.6, 0.61}};
   int own = 0;  // answers not bit-equal to Eigen's closed form: the fast path was taken
   for (const double scale : {1e-12, 1e-6, 1.0, 1e6})
     for (const Eigen::Vector3d& ev : spectra)
@@ -38,14 +39,17 @@ TEST(SmallestEigen, MatchesEigensSolverAndIsAnEigenpair) {
         const double top = want.eigenvalues()[2];
         // A double root is found to about the square root of the rounding error (its
         // polynomial is flat there): 1e-8 of the largest eigenvalue.
-        EXPECT_NEAR(got.value, std::max(0.0, want.eigenvalues()[0]), 1e-8 * top) << ev.transpose() << " x " << scale;
+        EXPECT_NEAR(got.value, std::max(0.0, want.eigenvalues()[0]), 1e-8 * top)
+            << ev.transpose() << " x " << scale;
         EXPECT_NEAR(got.trace, c.trace(), 1e-9 * top);
         EXPECT_NEAR(got.vector.norm(), 1.0, 1e-12);
         // An eigenvector of the smallest eigenvalue, whatever the multiplicity.
-        EXPECT_LE((c * got.vector - got.value * got.vector).norm(), 1e-7 * top) << ev.transpose() << " x " << scale;
+        EXPECT_LE((c * got.vector - got.value * got.vector).norm(), 1e-7 * top)
+            << ev.transpose() << " x " << scale;
         // And the solver's own where the smallest eigenvalue is separate.
         if (ev[1] - ev[0] > 1e-3 * ev[2]) {
-          EXPECT_GT(std::abs(got.vector.dot(want.eigenvectors().col(0))), 1.0 - 1e-9) << ev.transpose() << " x " << scale;
+          EXPECT_GT(std::abs(got.vector.dot(want.eigenvectors().col(0))), 1.0 - 1e-9)
+              << ev.transpose() << " x " << scale;
         }
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> direct;
         direct.computeDirect(c);

@@ -23,8 +23,8 @@ SmallestEigen smallest_eigen(const Eigen::Matrix3d& cov) {
     // the steps rise to it without overshooting. Quadratic for a separate root (a surface's
     // normal: a few steps); slow only where the root is (nearly) double - left to Eigen.
     const double c2 = m.trace(),
-                 c1 = m(0, 0) * m(1, 1) + m(0, 0) * m(2, 2) + m(1, 1) * m(2, 2) - m(0, 1) * m(0, 1) -
-                      m(0, 2) * m(0, 2) - m(1, 2) * m(1, 2),
+                 c1 = m(0, 0) * m(1, 1) + m(0, 0) * m(2, 2) + m(1, 1) * m(2, 2) -
+                      m(0, 1) * m(0, 1) - m(0, 2) * m(0, 2) - m(1, 2) * m(1, 2),
                  c0 = m.determinant();
     double l = 0.0;
     bool converged = false;
@@ -37,7 +37,8 @@ SmallestEigen smallest_eigen(const Eigen::Matrix3d& cov) {
     }
     // The eigenvector: the largest cross product of two rows of m - l I (each orthogonal to it).
     const Eigen::Matrix3d r = m - l * Eigen::Matrix3d::Identity();
-    const Eigen::Vector3d x[3] = {r.row(0).cross(r.row(1)), r.row(0).cross(r.row(2)), r.row(1).cross(r.row(2))};
+    const Eigen::Vector3d x[3] = {r.row(0).cross(r.row(1)), r.row(0).cross(r.row(2)),
+                                  r.row(1).cross(r.row(2))};
     int best = 0;
     for (int i = 1; i < 3; ++i)
       if (x[i].squaredNorm() > x[best].squaredNorm()) best = i;

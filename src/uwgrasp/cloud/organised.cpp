@@ -93,7 +93,8 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       const Eigen::Vector3f pj = points[j];
       std::size_t n = 0;
-      for_each_window_pixel(map, table, j, [&](std::size_t s, int) { d2[n++] = (points[s] - pj).squaredNorm(); });
+      for_each_window_pixel(map, table, j,
+                            [&](std::size_t s, int) { d2[n++] = (points[s] - pj).squaredNorm(); });
       if (n >= k) {
         const double sum = n == 24 ? sum_of_smallest_roots<24>(d2.data(), n, k)
                                    : sum_of_smallest_roots(d2.data(), n, k);
@@ -105,7 +106,9 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
       best.assign(d2.begin(), d2.begin() + std::ptrdiff_t(n));
       std::sort(best.begin(), best.end());
       for (int ring = int(half_window) + 1; ring <= widest && n < k; ++ring)
-        for_each_ring_pixel(map, j, ring, [&](std::size_t s) { ++n, offer(best, k, (points[s] - pj).squaredNorm()); });
+        for_each_ring_pixel(map, j, ring, [&](std::size_t s) {
+          ++n, offer(best, k, (points[s] - pj).squaredNorm());
+        });
       if (best.empty()) {
         mean[j] = std::numeric_limits<float>::infinity();
         continue;

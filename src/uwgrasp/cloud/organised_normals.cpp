@@ -40,8 +40,10 @@ std::vector<char> surely_full(const PixelMap& map, const Ranges& range, std::siz
   // table, fill a fraction of it: the whole rows took a fifth of the stage on mOSD_learn0).
   // A pixel out of play is +inf to the min and -inf to the max.
   std::vector<std::size_t> first(H, W), last(H, 0);  // each row's in-play columns
-  for (const std::uint32_t p : map.pixel)
-    first[p / W] = std::min<std::size_t>(first[p / W], p % W), last[p / W] = std::max<std::size_t>(last[p / W], p % W);
+  for (const std::uint32_t p : map.pixel) {
+    first[p / W] = std::min<std::size_t>(first[p / W], p % W);
+    last[p / W] = std::max<std::size_t>(last[p / W], p % W);
+  }
   tbb::parallel_for(std::size_t(0), H, [&](std::size_t v) {
     const float* row = &img[v * W];
     std::size_t from = W, to = 0;

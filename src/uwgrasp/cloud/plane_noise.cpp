@@ -66,7 +66,8 @@ std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<doubl
     for (std::size_t j = 0; j < bin_key.size(); ++j) by_key[bin_key[j]].push_back(dist[j]);
     for (auto& [k, v] : by_key) flat.insert(flat.end(), v.begin(), v.end());
     std::size_t at = 0;
-    for (auto& [k, v] : by_key) bins.push_back({k, std::span<const double>(flat).subspan(at, v.size())}), at += v.size();
+    for (auto& [k, v] : by_key)
+      bins.push_back({k, std::span<const double>(flat).subspan(at, v.size())}), at += v.size();
     return bins;
   }
   constexpr std::size_t kBlock = std::size_t(1) << 14;
@@ -74,7 +75,8 @@ std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<doubl
   const auto block_end = [&](std::size_t c) { return std::min(bin_key.size(), (c + 1) * kBlock); };
   std::vector<std::size_t> at(blocks * span, 0);  // block c's count, then its start, per bin
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t c) {
-    for (std::size_t j = c * kBlock; j < block_end(c); ++j) ++at[c * span + std::size_t(bin_key[j] - *lo)];
+    for (std::size_t j = c * kBlock; j < block_end(c); ++j)
+      ++at[c * span + std::size_t(bin_key[j] - *lo)];
   });
   std::vector<std::size_t> size(span, 0);
   std::size_t start = 0;
@@ -85,11 +87,13 @@ std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<doubl
     }
   flat.resize(bin_key.size());
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t c) {
-    for (std::size_t j = c * kBlock; j < block_end(c); ++j) flat[at[c * span + std::size_t(bin_key[j] - *lo)]++] = dist[j];
+    for (std::size_t j = c * kBlock; j < block_end(c); ++j)
+      flat[at[c * span + std::size_t(bin_key[j] - *lo)]++] = dist[j];
   });
   start = 0;
   for (std::size_t b = 0; b < span; ++b) {
-    if (size[b] > 0) bins.push_back({*lo + long(b), std::span<const double>(flat).subspan(start, size[b])});
+    if (size[b] > 0)
+      bins.push_back({*lo + long(b), std::span<const double>(flat).subspan(start, size[b])});
     start += size[b];
   }
   return bins;

@@ -74,7 +74,9 @@ Eigen::Vector4f least_squares_plane(const Cloud& in, const Eigen::Vector4f& plan
   // Two passes over the cloud (the mean, then the covariance about it, eq. 4.4), each summed in
   // fixed blocks combined in a fixed order: the same result whatever the thread count, and no
   // list of a frame's 10^5 inliers to build first (select + a serial covariance took 0.6 ms).
-  const auto inlier = [&](const Eigen::Vector3f& p) { return std::abs(plane.head<3>().dot(p) + plane[3]) <= tol; };
+  const auto inlier = [&](const Eigen::Vector3f& p) {
+    return std::abs(plane.head<3>().dot(p) + plane[3]) <= tol;
+  };
   const tbb::blocked_range<std::size_t> all(0, in.size(), 1 << 13);
   using Sum = std::pair<Eigen::Vector3d, std::size_t>;
   const Sum s = tbb::parallel_deterministic_reduce(
