@@ -59,9 +59,11 @@ std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<doubl
                        std::vector<double>& flat) {
   std::vector<Bin> bins;
   if (bin_key.empty()) return bins;
-  const auto [lo, hi] = std::minmax_element(bin_key.begin(), bin_key.end());
-  const std::size_t span = std::size_t(*hi - *lo + 1);
-  if (*hi - *lo >= 4096) {  // not a frame's few metres: a map of the bins in use
+  // Plain values, not a structured binding: lambdas below use lo (clang 14 cannot capture one).
+  const auto range = std::minmax_element(bin_key.begin(), bin_key.end());
+  const long lo = *range.first, hi = *range.second;
+  const std::size_t span = std::size_t(hi - lo + 1);
+  if (hi - lo >= 4096) {  // not a frame's few metres: a map of the bins in use
     std::map<long, std::vector<double>> by_key;
     for (std::size_t j = 0; j < bin_key.size(); ++j) by_key[bin_key[j]].push_back(dist[j]);
     for (auto& [k, v] : by_key) flat.insert(flat.end(), v.begin(), v.end());
@@ -76,7 +78,7 @@ std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<doubl
   std::vector<std::size_t> at(blocks * span, 0);  // block c's count, then its start, per bin
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t c) {
     for (std::size_t j = c * kBlock; j < block_end(c); ++j)
-      ++at[c * span + std::size_t(bin_key[j] - *lo)];
+      ++at[c * span + std::size_t(bin_key[j] - lo)];
   });
   std::vector<std::size_t> size(span, 0);
   std::size_t start = 0;
@@ -88,12 +90,12 @@ std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<doubl
   flat.resize(bin_key.size());
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t c) {
     for (std::size_t j = c * kBlock; j < block_end(c); ++j)
-      flat[at[c * span + std::size_t(bin_key[j] - *lo)]++] = dist[j];
+      flat[at[c * span + std::size_t(bin_key[j] - lo)]++] = dist[j];
   });
   start = 0;
   for (std::size_t b = 0; b < span; ++b) {
     if (size[b] > 0)
-      bins.push_back({*lo + long(b), std::span<const double>(flat).subspan(start, size[b])});
+      bins.push_back({lo + long(b), std::span<const double>(flat).subspan(start, size[b])});
     start += size[b];
   }
   return bins;
