@@ -58,8 +58,13 @@ bool hypothesis(const Cloud& in, std::uint64_t seed, std::uint32_t i, Eigen::Vec
   return true;
 }
 
+// Whether p lies within tol of the plane m: the inlier test of the selection and the refit.
+bool within(const Eigen::Vector4f& m, const Eigen::Vector3f& p, float tol) {
+  return std::abs(m.head<3>().dot(p) + m[3]) <= tol;
+}
+
 std::vector<std::uint32_t> select_inliers(const Cloud& in, const Eigen::Vector4f& m, float tol) {
-  return indices_where(in.size(), [&](std::size_t i) { return std::abs(m.head<3>().dot(in.points[i]) + m[3]) <= tol; });
+  return indices_where(in.size(), [&](std::size_t i) { return within(m, in.points[i], tol); });
 }
 }  // namespace
 
@@ -74,9 +79,7 @@ Eigen::Vector4f least_squares_plane(const Cloud& in, const Eigen::Vector4f& plan
   // Two passes over the cloud (the mean, then the covariance about it, eq. 4.4), each summed in
   // fixed blocks combined in a fixed order: the same result whatever the thread count, and no
   // list of a frame's 10^5 inliers to build first (select + a serial covariance took 0.6 ms).
-  const auto inlier = [&](const Eigen::Vector3f& p) {
-    return std::abs(plane.head<3>().dot(p) + plane[3]) <= tol;
-  };
+  const auto inlier = [&](const Eigen::Vector3f& p) { return within(plane, p, tol); };
   const tbb::blocked_range<std::size_t> all(0, in.size(), 1 << 13);
   using Sum = std::pair<Eigen::Vector3d, std::size_t>;
   const Sum s = tbb::parallel_deterministic_reduce(
