@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -161,11 +163,17 @@ V3 away_from_mass(Grid g, int i, int j, int k, Outside outside) {
   if (i >= 2 && j >= 2 && k >= 2 && i + 2 < s.nx && j + 2 < s.ny && k + 2 < s.nz) {
     const std::ptrdiff_t sy = s.nx, sz = std::ptrdiff_t(s.nx) * s.ny;
     const Occupancy* c = s.cells.data() + g.index(i, j, k);
+    // Without a branch per voxel: a row's count and its first moment (the 5 x 5 x 5 block of a
+    // shell voxel is half in, half out, and a branch on each mispredicted half the time).
     for (int dk = -2; dk <= 2; ++dk)
       for (int dj = -2; dj <= 2; ++dj) {
         const Occupancy* row = c + dk * sz + dj * sy;
-        for (int di = -2; di <= 2; ++di)
-          if (!outside(row[di])) sum -= Eigen::Vector3i(di, dj, dk);
+        int count = 0, moment = 0;
+        for (int di = -2; di <= 2; ++di) {
+          const int in = !outside(row[di]);
+          count += in, moment += in * di;
+        }
+        sum -= Eigen::Vector3i(moment, count * dj, count * dk);
       }
   } else {
     for (int dk = -2; dk <= 2; ++dk)
@@ -174,6 +182,15 @@ V3 away_from_mass(Grid g, int i, int j, int k, Outside outside) {
           if (!outside(g.get(i + di, j + dj, k + dk))) sum -= Eigen::Vector3i(di, dj, dk);
   }
   return sum.cast<float>();
+}
+
+// Whether the 8 cells from c on are all free: most of a grid is (87 % of mOSD_learn17's object's),
+// and the shells skip those 8 at a time.
+inline bool free_run(const Occupancy* c) {
+  static_assert(sizeof(Occupancy) == 1 && Occupancy::free == Occupancy{0});
+  std::uint64_t word;
+  std::memcpy(&word, c, sizeof word);
+  return word == 0;
 }
 
 // The unseen voxels (`part` says which) next to one outside the part (`outside`), with normals
@@ -189,6 +206,10 @@ void shell(Grid g, Part part, Outside outside, bool mirrored_surface, std::vecto
   tbb::parallel_for(0, s.nz, [&](int k) {
     for (int j = 0; j < s.ny; ++j)
       for (int i = 0; i < s.nx; ++i) {
+        if (i + 8 <= s.nx && free_run(s.cells.data() + g.index(i, j, k))) {
+          i += 7;
+          continue;
+        }
         const Occupancy o = s.cells[g.index(i, j, k)];
         if (o == Occupancy::free || o == Occupancy::seen || o == Occupancy::mirrored || !part(o)) continue;
         if (!on_boundary(g, i, j, k, outside) || (mirrored_surface && by_mirrored(g, i, j, k))) continue;
