@@ -24,17 +24,6 @@ constexpr std::uint64_t kAntipodal = 5ULL << 40;
 constexpr std::uint64_t kLiftStream = 0x9E3779B97F4A7C15ULL;
 using V3 = Eigen::Vector3f;
 
-// How far the model reaches from p along u (unit) before `gap` of free space, up to `limit`.
-float extent_along(const ObjectShape& shape, const V3& p, const V3& u, float limit, float gap) {
-  const float step = 0.5f * shape.voxel;
-  float last = 0.0f;
-  for (float t = step; t <= limit + gap; t += step) {
-    if (shape.occupied(p + t * u)) last = t;
-    else if (t - last > gap) break;
-  }
-  return last;
-}
-
 // The steps i in [first, last] whose points base + i d can lie in the shape's grid (outside
 // it every point is free), widened by a step either side against rounding: a palm line's scan
 // skips the part of it outside the grid with the same answer (sample stage 52-78 -> 49-65 ms
