@@ -212,16 +212,28 @@ std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, c
 void mirror_points(std::span<const Eigen::Vector3f> level, std::span<const Eigen::Vector3f> normals,
                    std::span<const MirrorPlane> planes, const SceneView& view, float tolerance,
                    std::vector<Eigen::Vector3f>& points, std::vector<Eigen::Vector3f>& out_normals) {
-  const auto keep = [&](const V3& p, const V3& n) {
-    if (classify(view, p, tolerance) == Seen::hidden) points.push_back(p), out_normals.push_back(n);
-  };
-  for (std::size_t i = 0; i < level.size(); ++i) {
-    const V3 n = i < normals.size() ? normals[i] : V3::Zero();
-    for (std::size_t a = 0; a < planes.size(); ++a) {
-      const V3 p = planes[a].mirror(level[i]), m = planes[a].mirror_direction(n);
-      keep(p, m);
-      for (std::size_t b = a + 1; b < planes.size(); ++b) keep(planes[b].mirror(p), planes[b].mirror_direction(m));
+  if (planes.empty()) return;
+  // Blocks of points in parallel, each into its own lists, joined in block order: the same
+  // points in the same order as one pass (1 ms serially on mOSD_learn17's object).
+  constexpr std::size_t kBlock = 2048;
+  const std::size_t blocks = (level.size() + kBlock - 1) / kBlock;
+  std::vector<std::vector<V3>> block_points(blocks), block_normals(blocks);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t k) {
+    const auto keep = [&](const V3& p, const V3& n) {
+      if (classify(view, p, tolerance) == Seen::hidden) block_points[k].push_back(p), block_normals[k].push_back(n);
+    };
+    for (std::size_t i = k * kBlock; i < std::min(level.size(), (k + 1) * kBlock); ++i) {
+      const V3 n = i < normals.size() ? normals[i] : V3::Zero();
+      for (std::size_t a = 0; a < planes.size(); ++a) {
+        const V3 p = planes[a].mirror(level[i]), m = planes[a].mirror_direction(n);
+        keep(p, m);
+        for (std::size_t b = a + 1; b < planes.size(); ++b) keep(planes[b].mirror(p), planes[b].mirror_direction(m));
+      }
     }
+  });
+  for (std::size_t k = 0; k < blocks; ++k) {
+    points.insert(points.end(), block_points[k].begin(), block_points[k].end());
+    out_normals.insert(out_normals.end(), block_normals[k].begin(), block_normals[k].end());
   }
 }
 
