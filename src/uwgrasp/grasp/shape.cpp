@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "uwgrasp/cloud/kdtree.hpp"
@@ -232,7 +233,7 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
                            std::span<const Eigen::Vector3f> camera, const Frames& frames,
                            const std::optional<FloorPlane>& floor, const ShapeConfig& cfg,
                            std::span<const Eigen::Vector3f> normals, const SceneSight* scene,
-                           const cloud::KdTree* level_tree) {
+                           ShapeTrees trees) {
   if (level.empty() || level.size() != camera.size())
     throw Error("object shape: the object has no points (or the level and camera points differ)");
   if (!(cfg.voxel > 0.0f) || !(cfg.resolution > 0.0f))
@@ -240,14 +241,14 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
   if (!(cfg.min_thickness >= 0.0f) || !(cfg.shadow_tolerance >= 0.0f) || !(cfg.floor_clearance >= 0.0f))
     throw Error("grasp.shape: min_thickness, shadow_tolerance and floor_clearance must be >= 0");
   ObjectShape s;
-  s.noise = surface_noise(camera);
+  s.noise = surface_noise(camera, 12, 1500, trees.camera);
   const Pose camera_from_level = frames.level_from_camera.inverse();
   std::vector<V3> mirrored, mirrored_normals;
   if (scene != nullptr && cfg.symmetry.enabled) {
     const float tolerance = cfg.symmetry.tolerance + cfg.symmetry.noise_sigmas * s.noise;
     const SceneView view = make_scene_view(scene->points, scene->floor, camera_from_level, cfg.resolution, level,
                                            0.5f * tolerance);
-    s.planes = find_symmetry(level, view, s.noise, cfg.symmetry, level_tree);
+    s.planes = find_symmetry(level, view, s.noise, cfg.symmetry, trees.level);
     mirror_points(level, normals, s.planes, view, tolerance, mirrored, mirrored_normals);
   }
   size_grid(s, level, mirrored, floor, cfg);
@@ -270,9 +271,11 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
   return s;
 }
 
-float surface_noise(std::span<const Eigen::Vector3f> points, std::size_t k, std::size_t samples) {
+float surface_noise(std::span<const Eigen::Vector3f> points, std::size_t k, std::size_t samples,
+                    const cloud::KdTree* shared) {
   if (points.size() <= k) return 0.0f;
-  const cloud::KdTree tree(points);
+  std::optional<cloud::KdTree> own;
+  const cloud::KdTree& tree = shared ? *shared : own.emplace(points);
   const std::size_t step = std::max<std::size_t>(1, points.size() / samples);
   std::vector<float> rms((points.size() + step - 1) / step);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rms.size()), [&](const auto& r) {

@@ -102,6 +102,13 @@ struct SceneSight {
   std::optional<Eigen::Vector4f> floor;
 };
 
+// k-d trees the caller already has, over complete_shape's `level` and `camera` points (either
+// may be null: complete_shape builds what it needs).
+struct ShapeTrees {
+  const cloud::KdTree* level = nullptr;
+  const cloud::KdTree* camera = nullptr;
+};
+
 // Builds the shape of an object seen by the camera of `frames`: `level` and `camera` are the
 // same points in L and in the camera frame, `normals` their normals in L (may be empty: no
 // mirrored normals). With `scene` and cfg.symmetry on, the back is also mirrored from the
@@ -111,7 +118,7 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
                            std::span<const Eigen::Vector3f> camera, const Frames& frames,
                            const std::optional<FloorPlane>& floor, const ShapeConfig& cfg,
                            std::span<const Eigen::Vector3f> normals = {},
-                           const SceneSight* scene = nullptr, const cloud::KdTree* level_tree = nullptr);
+                           const SceneSight* scene = nullptr, ShapeTrees trees = {});
 
 // How far the model reaches from p along u (unit) before more than `gap` of free space, up to
 // `limit`: the last occupied of the points p + t u, t = step, 2 step, ... (step half a voxel, t
@@ -120,8 +127,9 @@ float extent_along(const ObjectShape& shape, const Eigen::Vector3f& p, const Eig
                    float gap);
 
 // The surface's noise: the median RMS distance of a point's k nearest neighbours from their
-// least-squares plane (on up to `samples` points). 0 for fewer than k points.
+// least-squares plane (on up to `samples` points). 0 for fewer than k points. `tree`, when
+// given, is a k-d tree over `points`.
 float surface_noise(std::span<const Eigen::Vector3f> points, std::size_t k = 12,
-                    std::size_t samples = 1500);
+                    std::size_t samples = 1500, const cloud::KdTree* tree = nullptr);
 
 }  // namespace uwgrasp::grasp
