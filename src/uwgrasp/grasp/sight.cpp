@@ -1,5 +1,7 @@
 #include "uwgrasp/grasp/sight.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include "uwgrasp/core/error.hpp"
 
 namespace uwgrasp::grasp {
@@ -34,6 +36,27 @@ SurfaceCells make_surface_cells(std::span<const V3> object, float cell) {
   }
   return s;
 }
+// The view's map from the bins' nearest depths (`seen`, width x height from u0, v0): an empty
+// bin takes the nearest of the 3 x 3 around it, once here rather than at every lookup (the
+// symmetry search looks up millions a frame, many over the removed seafloor, where every bin is
+// empty), and the map grows by a bin on each side for the bins next to it.
+void fill_gaps(SceneView& view, const std::vector<float>& seen) {
+  const int w = view.width, h = view.height;
+  const auto at = [&](int u, int v) {
+    return u < 0 || v < 0 || u >= w || v >= h ? kInf : seen[std::size_t(v) * std::size_t(w) + std::size_t(u)];
+  };
+  view.u0 -= 1, view.v0 -= 1, view.width = w + 2, view.height = h + 2;
+  view.near.assign(std::size_t(view.width) * std::size_t(view.height), kInf);
+  tbb::parallel_for(-1, h + 1, [&](int v) {  // rows in parallel, each writing its own
+    for (int u = -1; u <= w; ++u) {
+      float d = at(u, v);
+      if (!(d < kInf))
+        for (int dv = -1; dv <= 1; ++dv)
+          for (int du = -1; du <= 1; ++du) d = std::min(d, at(u + du, v + dv));
+      view.near[std::size_t(v + 1) * std::size_t(view.width) + std::size_t(u + 1)] = d;
+    }
+  });
+}
 }  // namespace
 
 bool SurfaceCells::contains(const Eigen::Vector3f& p) const {
@@ -65,13 +88,14 @@ SceneView make_scene_view(std::span<const Eigen::Vector3f> scene, const std::opt
   view.width = u1 - view.u0 + 1, view.height = v1 - view.v0 + 1;
   if (double(view.width) * double(view.height) > 5e7)
     throw Error("grasp.shape.resolution is too fine for this scene's field of view");
-  view.near.assign(std::size_t(view.width) * std::size_t(view.height), kInf);
+  std::vector<float> seen(std::size_t(view.width) * std::size_t(view.height), kInf);
   for (const V3& p : scene) {
     if (!(p.z() > 0.0f)) continue;
     const std::size_t k = std::size_t(bin_of(p.y() / p.z(), inverse) - view.v0) * std::size_t(view.width) +
                           std::size_t(bin_of(p.x() / p.z(), inverse) - view.u0);
-    view.near[k] = std::min(view.near[k], p.z());
+    seen[k] = std::min(seen[k], p.z());
   }
+  fill_gaps(view, seen);
   return view;
 }
 

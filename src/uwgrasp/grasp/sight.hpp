@@ -31,7 +31,10 @@ struct SurfaceCells {
 struct SceneView {
   float resolution = 0.003f;
   int u0 = 0, v0 = 0, width = 0, height = 0;
-  std::vector<float> near;  // +inf where nothing was seen
+  // Per bin, the nearest depth seen in it or, in an empty bin, in the 3 x 3 around it (gaps
+  // between points are not holes); +inf where nothing was seen there. One bin wider on each side
+  // than the bins holding points.
+  std::vector<float> near;
   std::optional<Eigen::Vector4f> floor;
   Pose camera_from_level = Pose::Identity();
   SurfaceCells surface;
@@ -62,20 +65,13 @@ inline int bin_of(float v, float inverse) {
   return float(t) > x ? t - 1 : t;
 }
 
-// The nearest depth seen along the ray through image point (x, y): the scene's nearest point in
-// its bin (or, for an empty bin, in the 3 x 3 around it: gaps between points are not holes), else
-// the seafloor's; +inf when nothing was seen there.
+// The nearest depth seen along the ray through image point (x, y): the view's in its bin (see
+// SceneView::near), else the seafloor's; +inf when nothing was seen there.
 inline float seen_depth(const SceneView& view, float x, float y) {
   const float inverse = 1.0f / view.resolution;
   const int u = bin_of(x, inverse) - view.u0, v = bin_of(y, inverse) - view.v0;
-  const auto at = [&](int uu, int vv) {
-    if (uu < 0 || vv < 0 || uu >= view.width || vv >= view.height) return kInf;
-    return view.near[std::size_t(vv) * std::size_t(view.width) + std::size_t(uu)];
-  };
-  float d = at(u, v);
-  if (d < kInf) return d;
-  for (int dv = -1; dv <= 1; ++dv)
-    for (int du = -1; du <= 1; ++du) d = std::min(d, at(u + du, v + dv));
+  const bool in = u >= 0 && v >= 0 && u < view.width && v < view.height;
+  const float d = in ? view.near[std::size_t(v) * std::size_t(view.width) + std::size_t(u)] : kInf;
   if (d < kInf || !view.floor) return d;
   const float den = view.floor->head<3>().dot(Eigen::Vector3f(x, y, 1.0f));
   if (std::abs(den) > 1e-6f && -(*view.floor)[3] / den > 0.0f) return -(*view.floor)[3] / den;
