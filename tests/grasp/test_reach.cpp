@@ -118,6 +118,51 @@ TEST(Reach, HierarchyAgreesWithEveryPointOnClutter) {
     EXPECT_GT(reasons[static_cast<int>(r)], 0u) << reject_name(r);
 }
 
+// The seafloor verdict corner by corner, as the plane check computed it before its closed form.
+Reject plane_by_corners(const Obstacles& o, const std::vector<Solid>& solids, const Candidate& c,
+                        const ReachConfig& cfg) {
+  const auto below = [&](const Solid& b, float t) {
+    for (const auto& p : corners(b, c, t))
+      if (o.plane.head<3>().dot(p) + o.plane[3] < -float(cfg.floor_tolerance)) return true;
+    return false;
+  };
+  bool blocked = false;
+  for (const Solid& b : solids) {
+    if (below(b, 0.0f)) return b.at_grasp;
+    blocked = blocked || below(b, float(cfg.standoff));
+  }
+  return blocked ? Reject::approach_blocked : Reject::none;
+}
+
+TEST(Reach, PlaneCheckIsTheCornerByCornerVerdict) {
+  Rig s;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::size_t reasons[kRejectKinds] = {}, on_a_corner = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Candidate c = candidate(Eigen::Vector3f(u(rng), u(rng), u(rng)),
+                                  Eigen::Vector3f(u(rng), u(rng), u(rng)),
+                                  Eigen::Vector3f(u(rng), u(rng), u(rng)));
+    s.cfg.standoff = 0.5 * (i % 5) / 4.0;
+    s.cfg.floor_tolerance = (i % 3) * 0.005;
+    Obstacles o;
+    o.has_plane = true;
+    o.plane << u(rng), u(rng), -1.0f, 0.0f;
+    o.plane.head<3>().normalize();
+    // Half the planes through a corner of a solid, at the tolerance: the verdict turns on rounding.
+    const Solid& b = s.solids[std::size_t(i) % s.solids.size()];
+    const Eigen::Vector3f corner = corners(b, c, (i / 7) % 2 ? float(s.cfg.standoff) : 0.0f)[std::size_t(i) % 8];
+    o.plane[3] = i % 2 ? -o.plane.head<3>().dot(corner) - float(s.cfg.floor_tolerance) : 0.3f * u(rng);
+    on_a_corner += i % 2;
+    const Reject r = reach_plane_check(o, s.solids, c, s.cfg);
+    ASSERT_EQ(r, plane_by_corners(o, s.solids, c, s.cfg)) << "candidate " << i;
+    ++reasons[static_cast<int>(r)];
+  }
+  for (Reject r : {Reject::none, Reject::hull_collision, Reject::scene_collision, Reject::approach_blocked})
+    EXPECT_GT(reasons[static_cast<int>(r)], 0u) << reject_name(r);
+  EXPECT_EQ(on_a_corner, 2000u);
+}
+
 TEST(Reach, PlaneIsMovedToTheLevelFrameWithTheCameraAbove) {
   FrameConfig fc;
   fc.capture_pitch = 0.3;

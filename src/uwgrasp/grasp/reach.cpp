@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -55,9 +56,22 @@ struct SolidView {
 // The plane is convex and the sweep linear in t, so the corners at both ends decide.
 Hit plane_hit(const Obstacles& o, const Solid& b, const Candidate& c, float s, float tol) {
   if (!o.has_plane) return Hit::none;
+  // The lowest corner's height in closed form: n.(R_c (centre + R_b (+-half) - t x) + p_c) + d is
+  // lowest at the signs against n_g = R_c^T n. Where it is clear of -tol by more than rounding can
+  // move either form (1e-5 of the magnitudes summed), it decides; else the corners are computed
+  // one by one, as the samplers' gate does for every draw (0.3 us a draw on the mug frame).
+  const Eigen::Vector3f n = o.plane.head<3>(), n_g = c.rotation.transpose() * n;
+  const Eigen::Vector3f spread = (b.rotation.transpose() * n_g).cwiseAbs().cwiseProduct(b.half);
+  const float middle = n.dot(c.position) + o.plane[3] + n_g.dot(b.centre) - spread.sum();
+  const float margin = 1e-5f * std::max(1.0f, n.norm()) *
+                       (1.0f + std::abs(o.plane[3]) + c.position.cwiseAbs().sum() + b.centre.cwiseAbs().sum() +
+                        b.half.sum() + s);
   const auto below = [&](float t) {
+    const float lowest = middle - t * n_g.x();
+    if (lowest > -tol + margin) return false;
+    if (lowest < -tol - margin) return true;
     for (const auto& p : corners(b, c, t))
-      if (o.plane.head<3>().dot(p) + o.plane[3] < -tol) return true;
+      if (n.dot(p) + o.plane[3] < -tol) return true;
     return false;
   };
   if (below(0.0f)) return Hit::at_grasp;
