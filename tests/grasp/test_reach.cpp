@@ -140,9 +140,9 @@ TEST(Reach, PlaneCheckIsTheCornerByCornerVerdict) {
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   std::size_t reasons[kRejectKinds] = {}, on_a_corner = 0;
   for (int i = 0; i < 4000; ++i) {
-    const Candidate c = candidate(Eigen::Vector3f(u(rng), u(rng), u(rng)),
-                                  Eigen::Vector3f(u(rng), u(rng), u(rng)),
-                                  Eigen::Vector3f(u(rng), u(rng), u(rng)));
+    const Candidate c =
+        candidate(Eigen::Vector3f(u(rng), u(rng), u(rng)), Eigen::Vector3f(u(rng), u(rng), u(rng)),
+                  Eigen::Vector3f(u(rng), u(rng), u(rng)));
     s.cfg.standoff = 0.5 * (i % 5) / 4.0;
     s.cfg.floor_tolerance = (i % 3) * 0.005;
     Obstacles o;
@@ -151,14 +151,17 @@ TEST(Reach, PlaneCheckIsTheCornerByCornerVerdict) {
     o.plane.head<3>().normalize();
     // Half the planes through a corner of a solid, at the tolerance: the verdict turns on rounding.
     const Solid& b = s.solids[std::size_t(i) % s.solids.size()];
-    const Eigen::Vector3f corner = corners(b, c, (i / 7) % 2 ? float(s.cfg.standoff) : 0.0f)[std::size_t(i) % 8];
-    o.plane[3] = i % 2 ? -o.plane.head<3>().dot(corner) - float(s.cfg.floor_tolerance) : 0.3f * u(rng);
+    const Eigen::Vector3f corner =
+        corners(b, c, (i / 7) % 2 ? float(s.cfg.standoff) : 0.0f)[std::size_t(i) % 8];
+    o.plane[3] =
+        i % 2 ? -o.plane.head<3>().dot(corner) - float(s.cfg.floor_tolerance) : 0.3f * u(rng);
     on_a_corner += i % 2;
     const Reject r = reach_plane_check(o, s.solids, c, s.cfg);
     ASSERT_EQ(r, plane_by_corners(o, s.solids, c, s.cfg)) << "candidate " << i;
     ++reasons[static_cast<int>(r)];
   }
-  for (Reject r : {Reject::none, Reject::hull_collision, Reject::scene_collision, Reject::approach_blocked})
+  for (Reject r :
+       {Reject::none, Reject::hull_collision, Reject::scene_collision, Reject::approach_blocked})
     EXPECT_GT(reasons[static_cast<int>(r)], 0u) << reject_name(r);
   EXPECT_EQ(on_a_corner, 2000u);
 }

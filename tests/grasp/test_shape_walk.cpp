@@ -18,8 +18,10 @@ float every_point(const ObjectShape& shape, const V3& p, const V3& u, float limi
   const float step = 0.5f * shape.voxel;
   float last = 0.0f;
   for (float t = step; t <= limit + gap; t += step) {
-    if (shape.occupied(p + t * u)) last = t;
-    else if (t - last > gap) break;
+    if (shape.occupied(p + t * u))
+      last = t;
+    else if (t - last > gap)
+      break;
   }
   return last;
 }
@@ -41,13 +43,16 @@ ObjectShape balls(std::mt19937& rng, float voxel) {
       for (int j = 0; j < s.ny; ++j)
         for (int i = 0; i < s.nx; ++i) {
           const float d = (V3(float(i), float(j), float(k)) - c).norm();
-          if (d <= r && d >= hollow) s.cells[std::size_t((k * s.ny + j) * s.nx + i)] = Occupancy::assumed;
+          if (d <= r && d >= hollow)
+            s.cells[std::size_t((k * s.ny + j) * s.nx + i)] = Occupancy::assumed;
         }
   }
   for (Occupancy& o : s.cells) {
     const float x = unit(rng);
-    if (o != Occupancy::free && x < 0.03f) o = Occupancy::free;
-    else if (o == Occupancy::free && x < 0.01f) o = Occupancy::seen;
+    if (o != Occupancy::free && x < 0.03f)
+      o = Occupancy::free;
+    else if (o == Occupancy::free && x < 0.01f)
+      o = Occupancy::seen;
   }
   return s;
 }
@@ -63,8 +68,9 @@ TEST(ShapeWalk, ExtentAlongIsTheWalkThatLooksUpEveryPoint) {
     const V3 size = voxel * V3(float(s.nx), float(s.ny), float(s.nz));
     for (int w = 0; w < 400; ++w) {
       // From inside the grid or a little outside it, in any direction.
-      const V3 p = s.origin + V3(unit(rng) * 1.2f - 0.1f, unit(rng) * 1.2f - 0.1f, unit(rng) * 1.2f - 0.1f)
-                                      .cwiseProduct(size);
+      const V3 p =
+          s.origin + V3(unit(rng) * 1.2f - 0.1f, unit(rng) * 1.2f - 0.1f, unit(rng) * 1.2f - 0.1f)
+                         .cwiseProduct(size);
       const V3 u = V3(normal(rng), normal(rng), normal(rng)).normalized();
       const float limit = unit(rng) * size.maxCoeff();
       // Gaps of whole and fractional steps, below a step, and far past the most skipped.

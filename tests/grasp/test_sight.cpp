@@ -17,14 +17,15 @@ using namespace uwgrasp::grasp;
 using V3 = Eigen::Vector3f;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-float brute_depth(const std::vector<V3>& scene, const std::optional<Eigen::Vector4f>& floor, float resolution,
-                  float x, float y) {
+float brute_depth(const std::vector<V3>& scene, const std::optional<Eigen::Vector4f>& floor,
+                  float resolution, float x, float y) {
   const float inverse = 1.0f / resolution;
   const int u = sight_detail::bin_of(x, inverse), v = sight_detail::bin_of(y, inverse);
   float own = kInf, around = kInf;
   for (const V3& p : scene) {
     if (!(p.z() > 0.0f)) continue;
-    const int pu = sight_detail::bin_of(p.x() / p.z(), inverse), pv = sight_detail::bin_of(p.y() / p.z(), inverse);
+    const int pu = sight_detail::bin_of(p.x() / p.z(), inverse),
+              pv = sight_detail::bin_of(p.y() / p.z(), inverse);
     if (pu == u && pv == v) own = std::min(own, p.z());
     if (std::abs(pu - u) <= 1 && std::abs(pv - v) <= 1) around = std::min(around, p.z());
   }
@@ -58,15 +59,18 @@ TEST(Sight, SeenDepthIsTheNearestInTheBinOrAroundItOrTheSeafloor) {
   const std::vector<V3> object{V3(1.0f, 0.0f, 0.0f)};
   // The seafloor 1.2 m below a camera pitched down, and no seafloor.
   for (const std::optional<Eigen::Vector4f>& floor :
-       {std::optional<Eigen::Vector4f>(Eigen::Vector4f(0.0f, -0.8f, -0.6f, 1.2f)), std::optional<Eigen::Vector4f>()}) {
+       {std::optional<Eigen::Vector4f>(Eigen::Vector4f(0.0f, -0.8f, -0.6f, 1.2f)),
+        std::optional<Eigen::Vector4f>()}) {
     for (const float resolution : {0.003f, 0.011f, 0.05f}) {
-      const SceneView view = make_scene_view(scene, floor, Pose::Identity(), resolution, object, 0.003f);
+      const SceneView view =
+          make_scene_view(scene, floor, Pose::Identity(), resolution, object, 0.003f);
       int empty_bins = 0;
       for (int q = 0; q < 4000; ++q) {
         // Over the view and past its edges.
         const float x = unit(rng) * 1.2f - 0.6f, y = unit(rng) * 1.0f - 0.5f;
         const float expected = brute_depth(scene, floor, resolution, x, y);
-        ASSERT_EQ(sight_detail::seen_depth(view, x, y), expected) << "resolution " << resolution << " at " << x << ", " << y;
+        ASSERT_EQ(sight_detail::seen_depth(view, x, y), expected)
+            << "resolution " << resolution << " at " << x << ", " << y;
         empty_bins += brute_depth(scene, std::nullopt, resolution, x, y) == kInf;
       }
       EXPECT_GT(empty_bins, 200);  // the rays through the hole and past the edges were asked
@@ -76,7 +80,8 @@ TEST(Sight, SeenDepthIsTheNearestInTheBinOrAroundItOrTheSeafloor) {
 
 TEST(Sight, AnEmptySceneSeesOnlyTheSeafloor) {
   const Eigen::Vector4f floor(0.0f, -1.0f, 0.0f, 1.0f);
-  const SceneView view = make_scene_view({}, floor, Pose::Identity(), 0.003f, std::vector<V3>{V3::Zero()}, 0.003f);
+  const SceneView view =
+      make_scene_view({}, floor, Pose::Identity(), 0.003f, std::vector<V3>{V3::Zero()}, 0.003f);
   EXPECT_FLOAT_EQ(sight_detail::seen_depth(view, 0.0f, 0.5f), 2.0f);  // -d / (n . (x, y, 1))
   EXPECT_EQ(sight_detail::seen_depth(view, 0.0f, -0.5f), kInf);       // above the horizon
 }

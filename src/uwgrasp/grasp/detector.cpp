@@ -60,8 +60,9 @@ struct Model {
   std::optional<Eigen::Vector4f> floor;  // L, from the surroundings' seafloor plane
   LevelCloud core;  // the visible points and the shape's thin core (empty with the shape off)
 };
-Model object_model(const LevelCloud& l, const Cloud& object, const Gripper& g, const GraspConfig& cfg,
-                   const Surroundings* around, ObjectGrasps& out, ShapeTrees trees) {
+Model object_model(const LevelCloud& l, const Cloud& object, const Gripper& g,
+                   const GraspConfig& cfg, const Surroundings* around, ObjectGrasps& out,
+                   ShapeTrees trees) {
   Model m{l, g, around ? level_plane(*around, out.frames) : std::nullopt, {}};
   if (!cfg.shape.enabled) return m;
   std::optional<SceneSight> sight;
@@ -195,7 +196,8 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   const bool spacing = cfg.score.inlier_mode != InlierMode::fixed && !(leaf > 0.0);
   tbb::parallel_invoke(
       [&] {
-        if (spacing || (cfg.shape.enabled && cfg.shape.symmetry.enabled && around != nullptr)) level_tree.emplace(l.points);
+        if (spacing || (cfg.shape.enabled && cfg.shape.symmetry.enabled && around != nullptr))
+          level_tree.emplace(l.points);
       },
       [&] {
         if (cfg.shape.enabled) camera_tree.emplace(object.points);
@@ -203,7 +205,8 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   out.max_inliers = max_inliers(cfg.score, g, l.points, leaf, level_tree ? &*level_tree : nullptr);
   timer.start("sample");  // first, so the stages print in pipeline order
   timer.start("shape");
-  const ShapeTrees trees{level_tree ? &*level_tree : nullptr, camera_tree ? &*camera_tree : nullptr};
+  const ShapeTrees trees{level_tree ? &*level_tree : nullptr,
+                         camera_tree ? &*camera_tree : nullptr};
   const Model model = object_model(l, object, g, cfg, around, out, trees);
   timer.start("check");   // the hierarchy (and the occlusion map beside it) is part of the check's cost
   Shadow shadow;

@@ -64,8 +64,8 @@ Hit plane_hit(const Obstacles& o, const Solid& b, const Candidate& c, float s, f
   const Eigen::Vector3f spread = (b.rotation.transpose() * n_g).cwiseAbs().cwiseProduct(b.half);
   const float middle = n.dot(c.position) + o.plane[3] + n_g.dot(b.centre) - spread.sum();
   const float margin = 1e-5f * std::max(1.0f, n.norm()) *
-                       (1.0f + std::abs(o.plane[3]) + c.position.cwiseAbs().sum() + b.centre.cwiseAbs().sum() +
-                        b.half.sum() + s);
+                       (1.0f + std::abs(o.plane[3]) + c.position.cwiseAbs().sum() +
+                        b.centre.cwiseAbs().sum() + b.half.sum() + s);
   const auto below = [&](float t) {
     const float lowest = middle - t * n_g.x();
     if (lowest > -tol + margin) return false;

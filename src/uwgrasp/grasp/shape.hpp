@@ -123,8 +123,8 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
 // How far the model reaches from p along u (unit) before more than `gap` of free space, up to
 // `limit`: the last occupied of the points p + t u, t = step, 2 step, ... (step half a voxel, t
 // summed step by step, up to limit + gap) before more than `gap` of free ones; 0 when none is.
-float extent_along(const ObjectShape& shape, const Eigen::Vector3f& p, const Eigen::Vector3f& u, float limit,
-                   float gap);
+float extent_along(const ObjectShape& shape, const Eigen::Vector3f& p, const Eigen::Vector3f& u,
+                   float limit, float gap);
 
 // The surface's noise: the median RMS distance of a point's k nearest neighbours from their
 // least-squares plane (on up to `samples` points). 0 for fewer than k points. `tree`, when

@@ -31,7 +31,7 @@ float extent_along(const ObjectShape& shape, const V3& p, const V3& u, float lim
   const float step = 0.5f * shape.voxel;
   const int stride = min_free_run(step, gap, limit + gap);
   float last = 0.0f, skipped[kMaxStride];
-  int n = 0;  // points since the last known occupied one (or the start), not looked up
+  int n = 0;          // points since the last known occupied one (or the start), not looked up
   bool each = false;  // in free space: every point looked up
   const auto last_skipped = [&] {
     for (int i = n - 1; i >= 0; --i)
@@ -40,8 +40,10 @@ float extent_along(const ObjectShape& shape, const V3& p, const V3& u, float lim
   };
   for (float t = step; t <= limit + gap; t += step) {
     if (each) {
-      if (shape.occupied(p + t * u)) last = t, each = false;
-      else if (t - last > gap) return last;
+      if (shape.occupied(p + t * u))
+        last = t, each = false;
+      else if (t - last > gap)
+        return last;
       continue;
     }
     if (n + 1 < stride) {

@@ -43,7 +43,9 @@ SurfaceCells make_surface_cells(std::span<const V3> object, float cell) {
 void fill_gaps(SceneView& view, const std::vector<float>& seen) {
   const int w = view.width, h = view.height;
   const auto at = [&](int u, int v) {
-    return u < 0 || v < 0 || u >= w || v >= h ? kInf : seen[std::size_t(v) * std::size_t(w) + std::size_t(u)];
+    return u < 0 || v < 0 || u >= w || v >= h
+               ? kInf
+               : seen[std::size_t(v) * std::size_t(w) + std::size_t(u)];
   };
   view.u0 -= 1, view.v0 -= 1, view.width = w + 2, view.height = h + 2;
   view.near.assign(std::size_t(view.width) * std::size_t(view.height), kInf);

@@ -220,14 +220,16 @@ void mirror_points(std::span<const Eigen::Vector3f> level, std::span<const Eigen
   std::vector<std::vector<V3>> block_points(blocks), block_normals(blocks);
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t k) {
     const auto keep = [&](const V3& p, const V3& n) {
-      if (classify(view, p, tolerance) == Seen::hidden) block_points[k].push_back(p), block_normals[k].push_back(n);
+      if (classify(view, p, tolerance) == Seen::hidden)
+        block_points[k].push_back(p), block_normals[k].push_back(n);
     };
     for (std::size_t i = k * kBlock; i < std::min(level.size(), (k + 1) * kBlock); ++i) {
       const V3 n = i < normals.size() ? normals[i] : V3::Zero();
       for (std::size_t a = 0; a < planes.size(); ++a) {
         const V3 p = planes[a].mirror(level[i]), m = planes[a].mirror_direction(n);
         keep(p, m);
-        for (std::size_t b = a + 1; b < planes.size(); ++b) keep(planes[b].mirror(p), planes[b].mirror_direction(m));
+        for (std::size_t b = a + 1; b < planes.size(); ++b)
+          keep(planes[b].mirror(p), planes[b].mirror_direction(m));
       }
     }
   });
