@@ -86,7 +86,12 @@ SceneView make_scene_view(std::span<const Eigen::Vector3f> scene, const std::opt
     const int u = bin_of(p.x() / p.z(), inverse), v = bin_of(p.y() / p.z(), inverse);
     view.u0 = std::min(view.u0, u), view.v0 = std::min(view.v0, v), u1 = std::max(u1, u), v1 = std::max(v1, v);
   }
-  if (u1 < view.u0) return view;  // nothing in front of the camera
+  // Nothing in front of the camera: an empty map, placed at 0 (from the sentinels, a lookup's
+  // bin minus u0 would overflow).
+  if (u1 < view.u0) {
+    view.u0 = view.v0 = 0;
+    return view;
+  }
   view.width = u1 - view.u0 + 1, view.height = v1 - view.v0 + 1;
   if (double(view.width) * double(view.height) > 5e7)
     throw Error("grasp.shape.resolution is too fine for this scene's field of view");
