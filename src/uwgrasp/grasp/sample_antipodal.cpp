@@ -24,22 +24,23 @@ constexpr std::uint64_t kAntipodal = 5ULL << 40;
 constexpr std::uint64_t kLiftStream = 0x9E3779B97F4A7C15ULL;
 using V3 = Eigen::Vector3f;
 
-// The steps i in [first, last] whose points base + i d can lie in the shape's grid (outside
-// it every point is free), widened by a step either side against rounding: a palm line's scan
-// skips the part of it outside the grid with the same answer (sample stage 52-78 -> 49-65 ms
-// on bench/frame's frames).
 // The grid's faces in L and a line direction's reciprocals, once per back_off: its 15 lines share
 // both (dividing per line cost 0.6 of the mug frame's 24 ms sample stage). A product by the
 // reciprocal rounds a little differently from the quotient; the step either side covers it.
-struct StepRange {
-  int first, last;
-};
 struct GridSlabs {
   V3 lo, hi, inverse;
   GridSlabs(const ObjectShape& shape, const V3& d)
       : lo(shape.origin - V3::Constant(0.5f * shape.voxel)),
         hi(lo + shape.voxel * V3(float(shape.nx), float(shape.ny), float(shape.nz))),
         inverse(d.cwiseInverse()) {}
+};
+
+// The steps i in [first, last] whose points base + i d can lie in the shape's grid (outside
+// it every point is free), widened by a step either side against rounding: a palm line's scan
+// skips the part of it outside the grid with the same answer (sample stage 52-78 -> 49-65 ms
+// on bench/frame's frames).
+struct StepRange {
+  int first, last;
 };
 StepRange steps_in_grid(const GridSlabs& g, const V3& base, const V3& d, int first, int last) {
   float t0 = float(first), t1 = float(last);

@@ -36,6 +36,7 @@ SurfaceCells make_surface_cells(std::span<const V3> object, float cell) {
   }
   return s;
 }
+
 // The view's map from the bins' nearest depths (`seen`, width x height from u0, v0): an empty
 // bin takes the nearest of the 3 x 3 around it, once here rather than at every lookup (the
 // symmetry search looks up millions a frame, many over the removed seafloor, where every bin is
