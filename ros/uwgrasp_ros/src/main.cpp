@@ -3,8 +3,10 @@
 
 #include "node.hpp"
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/core/memory.hpp"
 
 int main(int argc, char** argv) {
+  uwgrasp::keep_freed_memory();  // a stream of clouds: the first one's buffers serve the rest
   ros::init(argc, argv, "uwgrasp_node");
   ros::NodeHandle nh, pnh("~");
   try {

@@ -8,8 +8,8 @@ namespace uwgrasp {
 // again page by page: glibc hands buffers above its mmap threshold back on free. A fresh page
 // costs 0.1-12 us depending on the machine (12 us on the 2-core VM of docs/benchmarks.md, where
 // a 640x480 frame's buffers then cost more than its arithmetic). Call once at start-up in a
-// program that processes more than one frame; memory use then stays at its peak. A no-op
-// where the C library is not glibc.
-void keep_freed_memory();
+// program that processes more than one frame; memory use then stays at its peak. Returns
+// whether the policy is in force: false where the C library is not glibc (a no-op there).
+bool keep_freed_memory();
 
 }  // namespace uwgrasp
