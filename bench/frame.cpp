@@ -2,7 +2,10 @@
 // one process (as a camera stream would run), at 1 and 2 threads; the k-d tree path on the same
 // frames; and PCL's organised chain (IntegralImageNormalEstimation +
 // OrganizedMultiPlaneSegmentation + OrganizedConnectedComponentSegmentation) on the same frames.
-//   frame [--repeats N] [--frame NAME]   (default 20 repeats; NAME: a frame below or "simulated")
+//   frame [--repeats N] [--frame NAME] [--alone [--threads T]]
+//   (default 20 repeats; NAME: a frame below or "simulated"). --alone: each frame's segments,
+//   then its detections, as streams of their own at 1 and 2 threads (or T only), nothing else in
+//   between (as a node that only segments, or only detects, runs them); no other table.
 // Also counts the operator new calls of one more frame of the warm stream (alloc_count.hpp).
 #include <tbb/global_control.h>
 
@@ -63,15 +66,51 @@ Row run_uwgrasp(const Cloud& frame, io::Config cfg, int repeats) {
   row.segments = median(seg), row.grasp = median(grasp), row.kd_segments = median(kd);
   return row;
 }
+
+// Streams of one kind of call alone: what runs in between changes glibc's heap (a large free
+// raises its thresholds), so the default tables' interleaved timings are not a lone stream's.
+void run_alone(const std::vector<std::pair<std::string, Cloud>>& frames, const io::Config& cfg,
+               int repeats, const std::vector<int>& thread_counts) {
+  std::printf(
+      "| frame | threads | segments ms (segments alone) | best grasp ms (detections alone) |\n"
+      "|---|---|---|---|\n");
+  for (const auto& [name, frame] : frames)
+    for (const int threads : thread_counts) {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                      std::size_t(threads));
+      std::vector<double> seg, grasp;
+      try {
+        for (int r = 0; r < repeats; ++r)
+          seg.push_back(time_ms(
+              [&] { segment::segment_scene(frame, cfg.preprocess, cfg.segment, cfg.seed); }));
+        for (int r = 0; r < repeats; ++r)
+          grasp.push_back(time_ms(
+              [&] { grasp::detect(frame, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed); }));
+      } catch (const Error& e) {
+        std::printf("| %s | %d | %s | |\n", name.c_str(), threads, e.what());
+        continue;
+      }
+      std::printf("| %s | %d | %.1f | %.1f |\n", name.c_str(), threads, median(seg), median(grasp));
+      std::fflush(stdout);
+    }
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   keep_freed_memory();  // a stream of frames: the first frame's buffers serve the rest
   int repeats = 20;
   std::string only;  // one frame's name, or every frame
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (!std::strcmp(argv[i], "--repeats")) repeats = std::max(1, std::atoi(argv[++i]));
-    else if (!std::strcmp(argv[i], "--frame")) only = argv[++i];
+  bool alone = false;
+  std::vector<int> thread_counts = {1, 2};
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--alone"))
+      alone = true;
+    else if (i + 1 < argc && !std::strcmp(argv[i], "--repeats"))
+      repeats = std::max(1, std::atoi(argv[++i]));
+    else if (i + 1 < argc && !std::strcmp(argv[i], "--frame"))
+      only = argv[++i];
+    else if (i + 1 < argc && !std::strcmp(argv[i], "--threads"))
+      thread_counts = {std::max(1, std::atoi(argv[++i]))};
   }
   io::Config cfg = io::load_config("", {"segment.object.by=largest"});
   std::vector<std::pair<std::string, Cloud>> frames;
@@ -81,6 +120,10 @@ int main(int argc, char** argv) {
     if ((only.empty() || only == f) && std::filesystem::exists(dir + f + ".pcd"))
       frames.emplace_back(f, io::load_cloud(dir + f + ".pcd"));
   if (only.empty() || only == "simulated") frames.emplace_back("simulated thesis scene", bench::seafloor_scene(640, 480));
+  if (alone) {
+    run_alone(frames, cfg, repeats, thread_counts);
+    return 0;
+  }
   std::printf("| frame | threads | segments ms | best grasp ms | k-d tree path segments ms | "
               "PCL organised chain ms | PCL / uwgrasp (segments) |\n|---|---|---|---|---|---|---|\n");
   std::vector<std::pair<std::string, Row>> stage_rows;
