@@ -4,7 +4,6 @@
 
 #include <cstddef>
 #include <cstdlib>
-#include <cstring>
 
 #include "uwgrasp/core/memory.hpp"
 
@@ -35,10 +34,11 @@ long minor_faults() {
 // Allocates `bytes`, writes every page, frees it; returns the page faults that took.
 long touch_and_free(std::size_t bytes) {
   const long before = minor_faults();
-  auto* p = static_cast<char*>(std::malloc(bytes));
+  // volatile: the compiler may not drop the writes, nor with them the allocation.
+  auto* p = static_cast<volatile char*>(std::malloc(bytes));
   if (p == nullptr) return -1;
   for (std::size_t i = 0; i < bytes; i += 4096) p[i] = char(i);
-  std::free(p);
+  std::free(const_cast<char*>(p));
   return minor_faults() - before;
 }
 }  // namespace
