@@ -170,6 +170,28 @@ TEST(Gate, KeepsTheCheckOfWhatPasses) {
   EXPECT_GT(failed, 20u);
 }
 
+// A gate given the hull and obstacles made beforehand (the detector makes them beside the shape
+// model) is the gate that makes them itself: the same verdict and the same reason for every draw.
+TEST(Gate, MadeWithPrebuiltObstaclesIsTheSameGate) {
+  const Barbell s;
+  ASSERT_TRUE(s.reach.enabled);
+  const Gate own(s.inputs());
+  const Gate given(s.inputs(), vehicle_solids(s.gripper, s.frames, s.reach),
+                   make_obstacles(s.scene, s.frames, s.reach));
+  std::size_t passed = 0, reach_rejects = 0;
+  for (const Candidate& c : s.antipodal({}, 600)) {
+    const bool p = own.passes(c);
+    EXPECT_EQ(given.passes(c), p);
+    const Reject r = own.after_check(c);
+    EXPECT_EQ(given.after_check(c), r);
+    passed += p;
+    reach_rejects += r == Reject::hull_collision || r == Reject::scene_collision ||
+                     r == Reject::approach_blocked;
+  }
+  EXPECT_GT(passed, 20u);
+  EXPECT_GT(reach_rejects, 5u) << "the obstacles decide some verdicts";
+}
+
 // The thesis's future work (9.3): a sampler whose candidates are mostly feasible. Drawn on the
 // object's model alone, most antipodal draws still put a part into the object or the hull into
 // the seafloor; trying each draw's turns against the checks keeps most of them.

@@ -1,5 +1,7 @@
 #include "uwgrasp/grasp/gate.hpp"
 
+#include <utility>
+
 namespace uwgrasp::grasp {
 
 int part_inside(const ObjectShape& shape, const Gripper& g, const Candidate& c) {
@@ -15,6 +17,13 @@ Gate::Gate(const GateInputs& in)
   solids_ = vehicle_solids(in.gripper, in.frames, in.reach);
   obstacles_ = make_obstacles(in.scene, in.frames, in.reach);
 }
+
+Gate::Gate(const GateInputs& in, std::vector<Solid> solids, Obstacles obstacles)
+    : in_(in),
+      check_(in.model, in.checked),
+      camera_from_level_(in.frames.level_from_camera.inverse()),
+      solids_(std::move(solids)),
+      obstacles_(std::move(obstacles)) {}
 
 Reject Gate::after_check(const Candidate& c) const {
   if (const int part = part_inside(in_.shape, in_.checked, c); part >= 0)

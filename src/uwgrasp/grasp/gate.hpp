@@ -39,6 +39,9 @@ class Gate {
  public:
   // Throws Error for a reach configuration vehicle_solids rejects.
   explicit Gate(const GateInputs& in);
+  // With the reach check's vehicle solids and obstacles made beforehand (vehicle_solids and
+  // make_obstacles of in.scene, as the first constructor makes them), e.g. beside other work.
+  Gate(const GateInputs& in, std::vector<Solid> solids, Obstacles obstacles);
   // Why a candidate that passed the gripper check fails the rest, in the detector's order
   // (inside the shape, occluded, unreachable); Reject::none when it passes.
   Reject after_check(const Candidate& c) const;
