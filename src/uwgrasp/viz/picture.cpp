@@ -79,8 +79,23 @@ void draw_points(cv::Mat& img, const Cloud& cloud, const Camera& cam, const Pict
   }
 }
 
+// Darkens the picture under r towards the background, so that light text drawn there stays
+// legible over bright points and wires (a near view of a grasp fills the frame with both).
+void shade(cv::Mat& img, cv::Rect r) {
+  r &= cv::Rect(0, 0, img.cols, img.rows);
+  if (r.empty()) return;
+  cv::Mat roi = img(r);
+  cv::addWeighted(roi, 0.25, cv::Mat(roi.size(), roi.type(), kBackground), 0.75, 0.0, roi);
+}
+
+int text_width(const std::string& s, double scale, int thickness) {
+  int baseline = 0;
+  return cv::getTextSize(s, cv::FONT_HERSHEY_SIMPLEX, scale, thickness, &baseline).width;
+}
+
 void draw_colour_bar(cv::Mat& img, double lo, double hi, const std::string& name) {
   const int x = img.cols - 70, top = img.rows / 5, h = img.rows * 3 / 5;
+  shade(img, cv::Rect(x - 26, top - 50, img.cols - (x - 26), h + 76));  // the labels' reach
   for (int i = 0; i < h; ++i) {
     const cv::Vec3b c = value_colour(1.0 - double(i) / (h - 1));
     cv::line(img, {x, top + i}, {x + 18, top + i}, cv::Scalar(c[0], c[1], c[2]));
@@ -120,11 +135,31 @@ void draw_wires(cv::Mat& img, std::span<const Wire> wires, const Camera& cam, co
 
 void draw_key(cv::Mat& img, const Picture& pic) {
   int y = img.rows / 5;
+  if (!pic.key.empty())
+    shade(img, cv::Rect(img.cols - 216, y - 20, 216, 24 * int(pic.key.size()) + 8));
   for (const auto& [name, c] : pic.key) {
     const int x = img.cols - 210;
     cv::rectangle(img, {x, y - 12}, {x + 24, y + 2}, cv::Scalar(c.b, c.g, c.r), cv::FILLED);
     cv::putText(img, name, {x + 32, y}, cv::FONT_HERSHEY_SIMPLEX, 0.5, kText, 1, cv::LINE_AA);
     y += 24;
+  }
+}
+
+// The title and the legend's lines, top left, on a shaded panel as wide as the longest.
+void draw_header(cv::Mat& img, const Picture& pic) {
+  int width = pic.title.empty() ? 0 : text_width(pic.title, 0.75, 2);
+  for (const auto& line : pic.legend) width = std::max(width, text_width(line, 0.5, 1));
+  if (width == 0) return;
+  const int height = (pic.title.empty() ? 0 : 28) + 22 * int(pic.legend.size());
+  shade(img, cv::Rect(4, 4, width + 20, height + 12));
+  int y = 28;
+  if (!pic.title.empty()) {
+    cv::putText(img, pic.title, {14, y}, cv::FONT_HERSHEY_SIMPLEX, 0.75, kText, 2, cv::LINE_AA);
+    y += 28;
+  }
+  for (const auto& line : pic.legend) {
+    cv::putText(img, line, {14, y}, cv::FONT_HERSHEY_SIMPLEX, 0.5, kText, 1, cv::LINE_AA);
+    y += 22;
   }
 }
 }  // namespace
@@ -138,11 +173,7 @@ cv::Mat draw(const Cloud& cloud, std::span<const Wire> wires, const Picture& pic
   draw_points(img, cloud, cam, pic);
   draw_wires(img, wires, cam, pic);
   draw_key(img, pic);
-  int y = 28;
-  if (!pic.title.empty())
-    cv::putText(img, pic.title, {14, y}, cv::FONT_HERSHEY_SIMPLEX, 0.75, kText, 2, cv::LINE_AA), y += 28;
-  for (const auto& line : pic.legend)
-    cv::putText(img, line, {14, y}, cv::FONT_HERSHEY_SIMPLEX, 0.5, kText, 1, cv::LINE_AA), y += 22;
+  draw_header(img, pic);
   return img;
 }
 
