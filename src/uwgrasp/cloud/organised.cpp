@@ -89,7 +89,8 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
   const WindowTable table(map.width, half_window);
   std::vector<float> mean(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const auto& r) {
-    std::vector<float> d2(table.offset.size()), best;
+    std::array<float, kMaxWindow> d2;  // the window's pixels (check_window: at most 224)
+    std::vector<float> best;           // only next to holes
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       const Eigen::Vector3f pj = points[j];
       std::size_t n = 0;

@@ -94,21 +94,23 @@ struct Moments {
 // Separable running sums over the rows [v0, v1) of the frame: column sums over the window's
 // rows roll down, and a sum over the window's columns slides along each row, so a pixel costs
 // the same whatever the window. Calls at(j, moments) for every point j whose window
-// it takes (full[j]: the window in the frame and its in-play pixels continuous).
+// it takes (full[j]: the window in the frame and its in-play pixels continuous). `wanted` and
+// `col` are scratch, reused over a task's blocks (cleared here: the result does not depend on
+// what they held).
 template <class At>
 void window_moments(const Cloud& cloud, const PixelMap& map, const std::vector<char>& full,
                     std::size_t h, const Eigen::Vector3d& origin, std::size_t v0, std::size_t v1,
-                    At&& at) {
+                    std::vector<char>& wanted, std::vector<Moments>& col, At&& at) {
   const std::size_t W = map.width, H = map.height;
   // The rows holding a point to compute: the others only roll the column sums on (the sums of
   // a row that is computed do not depend on which rows were), and a block without one is
   // skipped (a frame's table rows, once the plane stage took the table).
-  std::vector<char> wanted(v1 - v0, 0);
+  wanted.assign(v1 - v0, 0);
   for (std::size_t v = v0; v < v1; ++v)
     for (std::size_t u = h; u + h < W && !wanted[v - v0]; ++u)
       if (const std::int32_t j = map.slot[v * W + u]; j >= 0 && full[std::size_t(j)]) wanted[v - v0] = 1;
   if (std::find(wanted.begin(), wanted.end(), 1) == wanted.end()) return;
-  std::vector<Moments> col(W);
+  col.assign(W, Moments{});
   const auto add_row = [&](std::size_t v, double sign) {
     if (v >= H) return;  // also the rows above the frame (wrapped below zero)
     for (std::size_t u = 0; u < W; ++u)
@@ -153,7 +155,7 @@ void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cf
   const WindowTable table(map.width, h);
   std::vector<char> full = surely_full(map, range, h, cfg.depth_change);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1024), [&](const auto& r) {
-    std::vector<std::uint32_t> list(whole);
+    std::array<std::uint32_t, kMaxWindow> list;  // whole <= kMaxWindow (check_window)
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       if (full[j]) continue;
       const std::size_t n = window_list(cloud.points, map, table, cfg.depth_change, range, j, list.data(), nullptr);
@@ -167,15 +169,20 @@ void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cf
   // depend on the thread count).
   const Eigen::Vector3d origin = cloud.points[cloud.size() / 2].cast<double>();
   constexpr std::size_t kRows = 16;
-  tbb::parallel_for(std::size_t{0}, (map.height + kRows - 1) / kRows, [&](std::size_t b) {
-    window_moments(cloud, map, full, h, origin, b * kRows,
-                   std::min<std::size_t>(map.height, (b + 1) * kRows),
-                   [&](std::size_t j, const Moments& m) {
-                     // Fewer than three pixels in play: no normal, as from a list.
-                     store(j, m.s[0] < 3.0 ? PointNormal{}
-                                           : normal_from_covariance(m.covariance(), cloud.points[j],
-                                                                    cloud.viewpoint));
-                   });
+  const std::size_t blocks = (map.height + kRows - 1) / kRows;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks), [&](const auto& r) {
+    std::vector<char> wanted;  // a task's scratch, over its blocks
+    std::vector<Moments> col;
+    for (std::size_t b = r.begin(); b != r.end(); ++b)
+      window_moments(cloud, map, full, h, origin, b * kRows,
+                     std::min<std::size_t>(map.height, (b + 1) * kRows), wanted, col,
+                     [&](std::size_t j, const Moments& m) {
+                       // Fewer than three pixels in play: no normal, as from a list.
+                       store(j, m.s[0] < 3.0
+                                    ? PointNormal{}
+                                    : normal_from_covariance(m.covariance(), cloud.points[j],
+                                                             cloud.viewpoint));
+                     });
   });
 }
 
@@ -183,14 +190,13 @@ std::vector<PointNormal> window_normals_of(std::span<const Eigen::Vector3f> poin
                                            const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint,
                                            std::span<const std::uint32_t> which) {
   check_window(cfg.normal_half_window);
-  if (map.pixel.size() != points.size()) throw Error("normals: the pixel map does not fit this cloud");
-  const std::uint32_t h = cfg.normal_half_window;
-  const std::size_t whole = std::size_t(2 * h + 1) * (2 * h + 1);
+  if (map.pixel.size() != points.size())
+    throw Error("normals: the pixel map does not fit this cloud");
   const Ranges range(points, viewpoint);
-  const WindowTable table(map.width, h);
+  const WindowTable table(map.width, cfg.normal_half_window);
   std::vector<PointNormal> out(which.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, which.size(), 256), [&](const auto& r) {
-    std::vector<std::uint32_t> list(whole);
+    std::array<std::uint32_t, kMaxWindow> list;  // a window's pixels (check_window above)
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const std::size_t n = window_list(points, map, table, cfg.depth_change, range, which[i], list.data(), nullptr);
       out[i] = normal_from(points, {list.data(), n}, points[which[i]], viewpoint);

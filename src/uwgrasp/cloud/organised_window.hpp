@@ -53,6 +53,8 @@ struct WindowTable {
   std::vector<std::ptrdiff_t> offset;
   std::vector<int> ring;
   WindowTable(std::uint32_t width, std::uint32_t half) : h(int(half)) {
+    const std::size_t pixels = std::size_t(2 * h + 1) * std::size_t(2 * h + 1) - 1;
+    offset.reserve(pixels), ring.reserve(pixels);  // one allocation each, not one per doubling
     for (int r = 1; r <= h; ++r)
       for (int dv = -r; dv <= r; ++dv) {
         const int step = (dv == -r || dv == r) ? 1 : 2 * r;
@@ -109,6 +111,9 @@ inline std::size_t window_list(std::span<const Eigen::Vector3f> points, const Pi
   });
   return c;
 }
+
+// The most pixels a window holds (check_window: h <= 7), for lists on the stack.
+constexpr std::size_t kMaxWindow = 15 * 15;
 
 inline void check_window(std::uint32_t h) {
   if (h < 1 || h > 7)

@@ -127,6 +127,7 @@ Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
   const float rad = region.angle_deg * std::numbers::pi_v<float> / 180.0f;
   Grower g{cloud, nb, region, color, std::cos(rad), region.distance * region.distance,
            color.point_threshold * color.point_threshold, out.label, {}};
+  g.queue.reserve(cloud.size());  // once, not a doubling per region that outgrows the last
   std::int32_t count = 0;
   for (std::uint32_t s : seed_order(cloud))
     if (out.label[s] == -1) g.grow(s, count++);
@@ -139,9 +140,13 @@ Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
   for (auto l : out.label)
     if (l >= 0) ++size[static_cast<std::size_t>(l)];
   std::vector<std::int32_t> renum(n, -1);
+  const auto kept = [&](std::uint32_t k) { return k >= region.min_size && k <= region.max_size; };
+  out.segments.reserve(std::size_t(std::count_if(size.begin(), size.end(), kept)));
   for (std::uint32_t s = 0; s < n; ++s)
-    if (size[s] >= region.min_size && size[s] <= region.max_size)
-      renum[s] = static_cast<std::int32_t>(out.segments.size()), out.segments.emplace_back();
+    if (kept(size[s])) {
+      renum[s] = static_cast<std::int32_t>(out.segments.size());
+      out.segments.emplace_back().reserve(size[s]);  // its size is known: one allocation
+    }
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     auto& l = out.label[i];
     if (l < 0) continue;
