@@ -2,8 +2,9 @@
 // one process (as a camera stream would run), at 1 and 2 threads; the k-d tree path on the same
 // frames; and PCL's organised chain (IntegralImageNormalEstimation +
 // OrganizedMultiPlaneSegmentation + OrganizedConnectedComponentSegmentation) on the same frames.
-//   frame [--repeats N] [--frame NAME] [--alone [--threads T]]
-//   (default 20 repeats; NAME: a frame below or "simulated"). --alone: each frame's segments,
+//   frame [--repeats N] [--frame NAME] [--alone [--threads T]] [--config FILE] [--set K=V ...]
+//   (default 20 repeats; NAME: a frame below or "simulated"; --config and --set as the CLI's, on
+//   top of `segment.object.by=largest`). --alone: each frame's segments,
 //   then its detections, as streams of their own at 1 and 2 threads (or T only), nothing else in
 //   between (as a node that only segments, or only detects, runs them); no other table.
 // Also counts the operator new calls of one more frame of the warm stream (alloc_count.hpp).
@@ -102,6 +103,8 @@ int main(int argc, char** argv) {
   std::string only;  // one frame's name, or every frame
   bool alone = false;
   std::vector<int> thread_counts = {1, 2};
+  std::string config;
+  std::vector<std::string> sets = {"segment.object.by=largest"};
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--alone"))
       alone = true;
@@ -111,8 +114,22 @@ int main(int argc, char** argv) {
       only = argv[++i];
     else if (i + 1 < argc && !std::strcmp(argv[i], "--threads"))
       thread_counts = {std::max(1, std::atoi(argv[++i]))};
+    else if (i + 1 < argc && !std::strcmp(argv[i], "--config"))
+      config = argv[++i];
+    else if (i + 1 < argc && !std::strcmp(argv[i], "--set"))
+      sets.emplace_back(argv[++i]);
+    else {
+      std::fprintf(stderr, "frame: unknown or incomplete argument '%s'\n", argv[i]);
+      return 2;
+    }
   }
-  io::Config cfg = io::load_config("", {"segment.object.by=largest"});
+  io::Config cfg;
+  try {
+    cfg = io::load_config(config, sets);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "frame: %s\n", e.what());
+    return 2;
+  }
   std::vector<std::pair<std::string, Cloud>> frames;
   const std::string dir = std::string(UWGRASP_DATA_DIR) + "/clouds/";
   for (const char* f : {"table_scene_mug_stereo_textured", "mOSD_learn0", "mOSD_learn17",
