@@ -115,6 +115,11 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
               d.scene.pre.counts.input, d.scene.pre.counts.output, d.scene.info.size());
   std::printf("object: segment %zu, %zu points, centroid (%.3f, %.3f, %.3f) m\n", d.segment,
               d.object.size(), c.x(), c.y(), c.z());
+  if (d.restored_colours)
+    std::printf(
+        "object: no %s object in the colours as seen; selected in the colours restored with "
+        "preprocess.water's coefficients (preprocess.water.fallback)\n",
+        cfg.segment.object.color.c_str());
   if (!r.shape.empty()) {
     std::printf("shape: %zu seen points, back mirrored about %zu symmetry plane%s (%zu points)",
                 d.object.size(), r.shape.planes.size(), r.shape.planes.size() == 1 ? "" : "s",

@@ -8,6 +8,7 @@
 
 #include "holds_scenes.hpp"
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/io/grasps_json.hpp"
 #include "uwgrasp/segment/select.hpp"
 #include "uwgrasp/sim/builtin_scenes.hpp"
 
@@ -56,8 +57,8 @@ TEST(HoldsInTurbidWater, ADimRedObjectIsStillTheObject) {
   EXPECT_TRUE(top1_holds(j));
 }
 
-// A green box in the same water: no object stands out as red, and the answer stays an error
-// naming the colour, not the reddest patch of seafloor.
+// A green box in the same water: no object stands out as red, in the colours as seen or restored,
+// and the answer stays an error naming the colour, not the reddest patch of seafloor.
 TEST(HoldsInTurbidWater, NoRedObjectIsStillNoObject) {
   sim::SceneObject box = solid("box", sim::Shape{.size = V3(0.06, 0.09, 0.08)}, V3(0, 0, 0.04));
   box.color = {30, 160, 40};
@@ -72,6 +73,41 @@ TEST(HoldsInTurbidWater, NoRedObjectIsStillNoObject) {
   try {
     (void)grasp::detect(f.cloud, cfg.preprocess, cfg.segment, cfg.grasp, 1);
     ADD_FAILURE() << "a grasp on a red object in a scene without one";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no red object"), std::string::npos) << e.what();
+    // Nor in the colours restored as a fallback (clear water's coefficients keep green green).
+    EXPECT_NE(std::string(e.what()).find("restored with preprocess.water"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A red jar 1.2 m away in turbid water: none of its pixels is red over min_intensity, nor does it
+// stand out of the seafloor's tint enough for the lowered threshold (the answer was "no red
+// object"). With restoration off, selecting by colour then restores the colours with
+// preprocess.water's coefficients (clear water's by default, the least any water attenuates) and
+// finds the jar in them, and its best grasp holds. With the fallback off, the old error.
+TEST(HoldsInTurbidWater, AFarRedJarIsFoundInColoursRestoredAsAFallback) {
+  sim::SceneObject jar =
+      solid("jar", sim::Shape{.kind = sim::ShapeKind::cylinder, .radius = 0.027, .length = 0.10},
+            V3(0, 0, 0.05));
+  jar.color = {210, 25, 25};
+  sim::Scene s = on_floor(jar);
+  s.vehicle = sim::looking_at(jar.pose.translation(), 1.2);
+  const Judged j = detect_and_judge(s, io::Config{}, 1, false, "turbid");
+  const auto [seen, red] = seen_and_red(j.frame, 0);
+  ASSERT_GT(seen, 500u);
+  EXPECT_EQ(red, 0u) << "the scene no longer provokes the failure";
+  EXPECT_TRUE(j.detection.restored_colours);
+  EXPECT_EQ(
+      io::grasps_to_json(j.detection, io::Config{}, "far", "test")["object"]["colours_restored"],
+      true);
+  EXPECT_GT(j.detection.object.size(), seen / 2);
+  EXPECT_TRUE(top1_holds(j));
+  io::Config off;
+  off.preprocess.water.fallback = false;
+  try {
+    (void)detect_and_judge(s, off, 1, false, "turbid");
+    ADD_FAILURE() << "found without the fallback: the scene no longer provokes the failure";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("no red object"), std::string::npos) << e.what();
   }

@@ -18,6 +18,11 @@ struct WaterColorConfig {
   Eigen::Vector3d attenuation{0.30, 0.07, 0.04};  // c per R, G, B, 1/m (the clear preset's)
   Eigen::Vector3d veiling{0.02, 0.10, 0.18};      // B per R, G, B, 0-1
   double min_transmission = 0.02;  // below this t a channel is noise: it is clamped to t = this
+  // With restoration off, selecting the object by colour restores the colours (with the
+  // coefficients above) when no object has the colour without: water takes red first, and a red
+  // object 1.2 m away in turbid water is red no more. The defaults are clear water's, the least
+  // natural water attenuates, so elsewhere the restored colours fall short of the true ones.
+  bool fallback = true;
 };
 
 // Restores the colours of `cloud` in place (no-op without colours). Throws Error naming the

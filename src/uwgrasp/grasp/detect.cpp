@@ -2,8 +2,10 @@
 // interest as a whole, gather what surrounds it, and find grasps on it (find_grasps, in
 // detector.cpp).
 #include <algorithm>
+#include <string>
 #include <vector>
 
+#include "uwgrasp/cloud/color.hpp"
 #include "uwgrasp/cloud/kdtree.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/grasp/detector.hpp"
@@ -12,10 +14,27 @@
 namespace uwgrasp::grasp {
 
 namespace {
+// The cloud whose colours select the object: the processed one, or, when selecting by colour
+// finds no object of it there and the water's fallback is on (restoration off), a copy with the
+// colours restored (cloud/color.hpp: the restoration is per point, as in preprocessing).
+const Cloud& colours_for_selection(const Cloud& c, const segment::Objects& objects,
+                                   const segment::ObjectConfig& cfg,
+                                   const cloud::WaterColorConfig* fallback, Cloud& restored) {
+  if (cfg.by != segment::ObjectBy::color || fallback == nullptr || !c.has_colors() ||
+      segment::has_colour_object(c, objects, cfg))
+    return c;
+  restored = c;
+  cloud::restore_colors(restored, *fallback);
+  return restored;
+}
+
 // The whole object the criterion picks among the processed cloud's connected objects, as
 // ascending indices into the processed cloud; `selected` becomes its largest segment.
-std::vector<std::uint32_t> whole_object(const segment::Scene& scene, const segment::ObjectConfig& cfg,
-                                        std::size_t& selected) {
+// `restored_colours`: whether colours_for_selection restored them.
+std::vector<std::uint32_t> whole_object(const segment::Scene& scene,
+                                        const segment::ObjectConfig& cfg, std::size_t& selected,
+                                        const cloud::WaterColorConfig* fallback,
+                                        bool& restored_colours) {
   const Cloud& c = scene.pre.cloud;
   cloud::Neighbours own;
   const cloud::Neighbours* nb = &scene.pre.neighbours;
@@ -26,9 +45,19 @@ std::vector<std::uint32_t> whole_object(const segment::Scene& scene, const segme
   }
   const float gap = cfg.gap > 0.0f ? cfg.gap : segment::connection_gap(*nb);
   const segment::Objects objects = segment::connected_objects(c, *nb, gap, 10);
-  const std::size_t k = segment::select_whole_object(c, objects, scene.segmentation, cfg);
+  Cloud restored;
+  const Cloud& coloured = colours_for_selection(c, objects, cfg, fallback, restored);
+  restored_colours = &coloured != &c;
+  std::size_t k = 0;
+  try {
+    k = segment::select_whole_object(coloured, objects, scene.segmentation, cfg);
+  } catch (const Error& e) {
+    if (!restored_colours) throw;
+    throw Error(std::string(e.what()) + "; restored with preprocess.water's coefficients the " +
+                "colours did not show it either (set the water's own)");
+  }
   std::vector<std::uint32_t> points;
-  for (const std::size_t part : segment::gather_parts(c, objects, k, cfg, cfg.part_reach))
+  for (const std::size_t part : segment::gather_parts(coloured, objects, k, cfg, cfg.part_reach))
     points.insert(points.end(), objects.points[part].begin(), objects.points[part].end());
   std::sort(points.begin(), points.end());
   std::vector<std::size_t> votes(scene.segmentation.segments.size(), 0);
@@ -39,13 +68,18 @@ std::vector<std::uint32_t> whole_object(const segment::Scene& scene, const segme
 }
 
 // The object's points as ascending indices into the processed cloud (object_points).
-std::vector<std::uint32_t> object_indices(const segment::Scene& scene, const segment::ObjectConfig& cfg,
-                                          std::size_t& selected) {
+std::vector<std::uint32_t> object_indices(const segment::Scene& scene,
+                                          const segment::ObjectConfig& cfg, std::size_t& selected,
+                                          const cloud::WaterColorConfig* fallback = nullptr,
+                                          bool* restored_colours = nullptr) {
   if (scene.info.empty())
     throw Error("segmentation found no segment to grasp in the " +
                 std::to_string(scene.pre.cloud.size()) +
                 " points left after preprocessing (a segment needs segment.region.min_size points)");
-  if (cfg.whole) return whole_object(scene, cfg, selected);
+  bool ignored = false;
+  if (cfg.whole)
+    return whole_object(scene, cfg, selected, fallback,
+                        restored_colours ? *restored_colours : ignored);
   selected = segment::select_object(scene.info, cfg);
   std::vector<std::uint32_t> points;
   for (const std::size_t s : segment::object_segments(scene.info, selected, cfg)) {
@@ -83,7 +117,9 @@ Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   d.scene = segment::segment_scene(input, pre, seg, seed);
   d.timer = d.scene.timer;
   d.timer.start("select");
-  const std::vector<std::uint32_t> object = object_indices(d.scene, seg.object, d.segment);
+  const bool fallback = pre.water.fallback && !pre.water.enabled;
+  const std::vector<std::uint32_t> object = object_indices(
+      d.scene, seg.object, d.segment, fallback ? &pre.water : nullptr, &d.restored_colours);
   d.object = select(d.scene.pre.cloud, object);
   d.timer.stop();
   const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;

@@ -56,6 +56,9 @@ struct Detection {
   std::vector<Eigen::Vector3f> obstacles;  // the processed scene and the points outliers removed
   std::vector<char> rests;  // per obstacle: 1 for the rest of the processed scene (Surroundings::rests)
   std::size_t segment = 0;  // the selected object's segment
+  // Whether the object was selected by colours restored as a fallback (preprocess.water.fallback):
+  // no object had the colour as the camera saw it.
+  bool restored_colours = false;
   Cloud object;             // its points, camera frame
   ObjectGrasps result;
   StageTimer timer;         // every stage, preprocessing to ranking

@@ -13,6 +13,7 @@ void visit_preprocess(Visitor& v, cloud::PreprocessConfig& c) {
     v.field("attenuation", c.water.attenuation, 0.0, 100.0);
     v.field("veiling", c.water.veiling, 0.0, 1.0);
     v.field("min_transmission", c.water.min_transmission, 1e-6, 1.0);
+    v.field("fallback", c.water.fallback);
   });
   v.section("range", [&] {
     v.field("enabled", c.range.enabled);

@@ -97,7 +97,8 @@ json grasps_to_json(const grasp::Detection& d, const Config& cfg, const std::str
   j["timing_ms"] = timing_json(d.timer);
   j["object"] = {{"centroid", vec(frame.from_camera * centroid(d.object))},
                  {"points", d.object.size()},
-                 {"segment", d.segment}};
+                 {"segment", d.segment},
+                 {"colours_restored", d.restored_colours}};
   j["sampler"] = grasp::sampler_name(r.sampler);
   j["max_inliers"] = r.max_inliers;
   j["grasps"] = json::array();

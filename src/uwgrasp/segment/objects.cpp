@@ -91,23 +91,37 @@ float colour_threshold(const Cloud& cloud, const Objects& o, const ObjectConfig&
   return 0.5f * p90[best];
 }
 
-// Colour mode: the object whose coloured points are the most intense, among the objects with at
-// least a quarter of the most coloured one's coloured points.
-std::size_t by_colour(const Cloud& cloud, const Objects& o, const ObjectConfig& cfg) {
-  std::vector<std::size_t> coloured(o.points.size(), 0);
-  std::vector<double> intensity(o.points.size(), 0.0);
-  const float threshold = cloud.has_colors() ? colour_threshold(cloud, o, cfg) : cfg.min_intensity;
+// Per object, its points of the colour (at the threshold) and their summed intensity.
+struct Coloured {
+  float threshold;
+  std::vector<std::size_t> count;
+  std::vector<double> intensity;
+  std::size_t most() const {
+    return count.empty() ? 0 : *std::max_element(count.begin(), count.end());
+  }
+};
+Coloured coloured_points(const Cloud& cloud, const Objects& o, const ObjectConfig& cfg) {
+  Coloured c{cloud.has_colors() ? colour_threshold(cloud, o, cfg) : cfg.min_intensity,
+             std::vector<std::size_t>(o.points.size(), 0),
+             std::vector<double>(o.points.size(), 0.0)};
   for (std::size_t k = 0; k < o.points.size(); ++k)
     for (const auto i : o.points[k])
       if (cloud.has_colors()) {
         const float v = color_intensity(cloud.colors[i], cfg.color);
-        if (v >= threshold) ++coloured[k], intensity[k] += v;
+        if (v >= c.threshold) ++c.count[k], c.intensity[k] += v;
       }
-  const std::size_t most = coloured.empty() ? 0 : *std::max_element(coloured.begin(), coloured.end());
+  return c;
+}
+
+// Colour mode: the object whose coloured points are the most intense, among the objects with at
+// least a quarter of the most coloured one's coloured points.
+std::size_t by_colour(const Cloud& cloud, const Objects& o, const ObjectConfig& cfg) {
+  Coloured c = coloured_points(cloud, o, cfg);
+  const std::size_t most = c.most();
   if (most == 0) {
     // Water takes red first, and more with range: say how to get the colour back, or do without.
     char value[32];
-    std::snprintf(value, sizeof value, "%g", double(threshold));
+    std::snprintf(value, sizeof value, "%g", double(c.threshold));
     throw Error("no " + cfg.color + " object: none of " + std::to_string(o.points.size()) +
                 " objects has a point of intensity >= " + value +
                 " (segment.object.min_intensity); if water has faded it, preprocess.water.enabled restores "
@@ -115,13 +129,17 @@ std::size_t by_colour(const Cloud& cloud, const Objects& o, const ObjectConfig& 
   }
   std::size_t best = o.points.size();
   for (std::size_t k = 0; k < o.points.size(); ++k) {
-    if (4 * coloured[k] < most) continue;
-    intensity[k] /= double(coloured[k]);
-    if (best == o.points.size() || intensity[k] > intensity[best]) best = k;
+    if (4 * c.count[k] < most) continue;
+    c.intensity[k] /= double(c.count[k]);
+    if (best == o.points.size() || c.intensity[k] > c.intensity[best]) best = k;
   }
   return best;
 }
 }  // namespace
+
+bool has_colour_object(const Cloud& cloud, const Objects& objects, const ObjectConfig& cfg) {
+  return !objects.points.empty() && coloured_points(cloud, objects, cfg).most() > 0;
+}
 
 std::size_t select_whole_object(const Cloud& cloud, const Objects& o, const Segmentation& seg,
                                 const ObjectConfig& cfg) {

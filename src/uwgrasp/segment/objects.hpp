@@ -33,6 +33,10 @@ Objects connected_objects(const Cloud& cloud, const cloud::Neighbours& nb, float
 float connection_gap(const cloud::Neighbours& nb, float spacing_mul = 3.0f, float lo = 0.004f,
                      float hi = 0.015f);
 
+// Whether some object has points of cfg.color at the intensity selecting by colour asks
+// (select_whole_object would find one).
+bool has_colour_object(const Cloud& cloud, const Objects& objects, const ObjectConfig& cfg);
+
 // The index of the object of interest. Throws Error naming the criterion when nothing matches.
 std::size_t select_whole_object(const Cloud& cloud, const Objects& objects, const Segmentation& seg,
                                 const ObjectConfig& cfg);
