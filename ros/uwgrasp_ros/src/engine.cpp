@@ -155,6 +155,7 @@ PlainDetection Engine::detect(const PlainCloud& in, const Capture& capture, cons
   const auto& r = d.result;
   out.sampler = uwgrasp::grasp::sampler_name(r.sampler);
   out.object_points = d.object.size();
+  out.colours_restored = d.restored_colours;
   out.candidates = r.candidates;
   out.feasible = r.feasible();
   out.object_centroid = arr(uwgrasp::centroid(d.object));

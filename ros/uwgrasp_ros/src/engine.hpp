@@ -79,6 +79,7 @@ struct PlainDetection {
   std::array<double, 3> object_centroid{};
   std::vector<float> object_xyz;          // the object's points, 3 each
   std::vector<PlainGrasp> grasps;         // best first
+  bool colours_restored = false;          // the object selected in restored colours (fallback)
   std::vector<std::pair<std::string, double>> stage_ms;
   double total_ms = 0;
   std::string json;                       // grasps.json (INTERFACE.md), compact, one line

@@ -112,6 +112,8 @@ void Node::diagnose(int level, const std::string& message, const PlainDetection*
     add("latency ms", std::to_string(latency_ms));
     for (const auto& st : d->stage_ms) add(st.first + " ms", std::to_string(st.second));
     add("total ms", std::to_string(d->total_ms));
+    // preprocess.water.fallback: no object had the colour as the camera saw it.
+    add("colours restored", d->colours_restored ? "true" : "false");
   }
   a.status.push_back(s);
   diagnostics_.publish(a);
