@@ -21,7 +21,7 @@ const Cloud& colours_for_selection(const Cloud& c, const segment::Objects& objec
                                    const segment::ObjectConfig& cfg,
                                    const cloud::WaterColorConfig* fallback, Cloud& restored) {
   if (cfg.by != segment::ObjectBy::color || fallback == nullptr || !c.has_colors() ||
-      segment::has_colour_object(c, objects, cfg))
+      objects.points.empty() || segment::has_colour_object(c, objects, cfg))
     return c;
   restored = c;
   cloud::restore_colors(restored, *fallback);
