@@ -112,3 +112,25 @@ TEST(HoldsInTurbidWater, AFarRedJarIsFoundInColoursRestoredAsAFallback) {
     EXPECT_NE(std::string(e.what()).find("no red object"), std::string::npos) << e.what();
   }
 }
+
+// Selecting the nearest object in turbid water: a particle of marine snow near the lens covers
+// hundreds of pixels (neither outlier removal nor a segment's minimum size removes it), and a
+// blob of seafloor noise left past the plane's band a dozen; either has the scene's nearest
+// centroid, and the grasp was on it in every turbid frame of the judged probe scenes. Geometric
+// criteria now pick only objects wider than segment.object.min_extent: the jar, the same points
+// selecting by colour takes, and its best grasp holds. With min_extent 0, the old answer.
+TEST(HoldsInTurbidWater, NearestIsTheJarNotASpeckOfSnowOrNoise) {
+  const sim::SceneObject jar =
+      solid("jar", sim::Shape{.kind = sim::ShapeKind::cylinder, .radius = 0.027, .length = 0.10},
+            V3(0, 0, 0.05));
+  io::Config cfg;
+  cfg.segment.object.by = segment::ObjectBy::nearest;
+  const Judged j = detect_and_judge(on_floor(jar), cfg, 1, false, "turbid");
+  const Judged by_colour = detect_and_judge(on_floor(jar), io::Config{}, 1, false, "turbid");
+  EXPECT_GT(j.detection.object.size(), 3000u);
+  EXPECT_EQ(j.detection.object.points, by_colour.detection.object.points);
+  EXPECT_TRUE(top1_holds(j));
+  cfg.segment.object.min_extent = 0.0f;
+  const Judged any = detect_and_judge(on_floor(jar), cfg, 1, false, "turbid");
+  EXPECT_LT(any.detection.object.size(), 300u) << "the scene no longer provokes the failure";
+}

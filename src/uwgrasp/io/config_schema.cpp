@@ -85,6 +85,7 @@ void visit_segment(Visitor& v, segment::SegmentConfig& c) {
     v.field("whole", c.object.whole);
     v.field("gap", c.object.gap, 0.0, 1.0);
     v.field("part_reach", c.object.part_reach, 0.0, 10.0);
+    v.field("min_extent", c.object.min_extent, 0.0, 10.0);
   });
 }
 }  // namespace

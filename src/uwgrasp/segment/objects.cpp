@@ -144,10 +144,15 @@ bool has_colour_object(const Cloud& cloud, const Objects& objects, const ObjectC
 std::size_t select_whole_object(const Cloud& cloud, const Objects& o, const Segmentation& seg,
                                 const ObjectConfig& cfg) {
   if (o.points.empty()) throw Error("no objects: nothing to select as the object of interest");
+  std::vector<char> wide(o.points.size(), 1);
+  for (std::size_t k = 0; k < o.points.size() && geometric(cfg); ++k)
+    wide[k] = !fragment(extent_of(cloud, o.points[k]), cfg);
+  const std::size_t first = std::size_t(std::find(wide.begin(), wide.end(), 1) - wide.begin());
+  if (first == wide.size()) throw_only_fragments(o.points.size(), "objects", cfg);
   const auto best = [&](auto key) {
-    std::size_t b = 0;
-    for (std::size_t k = 1; k < o.points.size(); ++k)
-      if (key(k) < key(b)) b = k;
+    std::size_t b = first;
+    for (std::size_t k = first + 1; k < o.points.size(); ++k)
+      if (wide[k] && key(k) < key(b)) b = k;
     return b;
   };
   switch (cfg.by) {
@@ -166,11 +171,12 @@ std::size_t select_whole_object(const Cloud& cloud, const Objects& o, const Segm
     }
     case ObjectBy::point: {
       const Eigen::Vector3f p = cfg.point.cast<float>();
-      std::size_t nearest = 0;
+      std::size_t nearest = first;
       float d = std::numeric_limits<float>::max();
-      for (std::size_t k = 0; k < o.points.size(); ++k)
+      for (std::size_t k = first; k < o.points.size(); ++k)
         for (const auto i : o.points[k])
-          if ((cloud.points[i] - p).squaredNorm() < d) d = (cloud.points[i] - p).squaredNorm(), nearest = k;
+          if (wide[k] && (cloud.points[i] - p).squaredNorm() < d)
+            d = (cloud.points[i] - p).squaredNorm(), nearest = k;
       return nearest;
     }
   }
@@ -201,6 +207,9 @@ std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std:
       eligible[k] = 2 * coloured[k] >= o.points[k].size() || (mean[k] > 0.0 && 2.0 * mean[k] >= mean[selected]);
   } else if (cfg.by == ObjectBy::color) {
     std::fill(eligible.begin(), eligible.end(), 0);
+  } else {  // no speck of snow joins the object as its part
+    for (std::size_t k = 0; k < o.points.size(); ++k)
+      eligible[k] = !fragment(extent_of(cloud, o.points[k]), cfg);
   }
   // Each object's bounds: an object whose box lies beyond `reach` of a part's box has no point
   // within reach of it, and is not searched (on a real frame, most of the scene). The 0.1 %

@@ -7,7 +7,8 @@
 // and the object of interest is chosen among those: by colour (the highest mean intensity of the
 // colour among its coloured points, over objects with at least a quarter as many coloured points
 // as the most coloured one: fragments are not objects), by segment label (the object holding
-// it), nearest, largest, or the object holding the point nearest a given point.
+// it), nearest, largest, or the object holding the point nearest a given point (these three
+// among objects wider than min_extent: select.hpp, extent_of).
 #include <cstdint>
 #include <vector>
 

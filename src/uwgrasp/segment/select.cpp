@@ -1,8 +1,10 @@
 #include "uwgrasp/segment/select.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "uwgrasp/core/error.hpp"
 
@@ -62,16 +64,42 @@ std::vector<SegmentInfo> describe_segments(const Cloud& cloud, const Segmentatio
                      static_cast<std::uint8_t>(std::lround(rgb.z()))};
     si.intensity = static_cast<float>(inten / n);
     si.distance = (si.centroid - cloud.viewpoint).norm();
+    si.extent = extent_of(cloud, idx);
   }
   return info;
 }
 
+float extent_of(const Cloud& cloud, std::span<const std::uint32_t> idx) {
+  Eigen::AlignedBox3f box;
+  for (const auto i : idx) box.extend(cloud.points[i]);
+  return idx.empty() ? 0.0f : box.diagonal().norm();
+}
+
+void throw_only_fragments(std::size_t count, const std::string& what, const ObjectConfig& cfg) {
+  char value[32];
+  std::snprintf(value, sizeof value, "%g", double(cfg.min_extent));
+  throw Error("no object: none of " + std::to_string(count) + " " + what +
+              " is wider than segment.object.min_extent " + value + " m (marine snow, noise)");
+}
+
+bool geometric(const ObjectConfig& cfg) {
+  return cfg.by == ObjectBy::nearest || cfg.by == ObjectBy::largest || cfg.by == ObjectBy::point;
+}
+
+bool fragment(float extent, const ObjectConfig& cfg) {
+  return geometric(cfg) && cfg.min_extent > 0.0f && extent <= cfg.min_extent;
+}
+
 std::size_t select_object(const std::vector<SegmentInfo>& info, const ObjectConfig& cfg) {
   if (info.empty()) throw Error("no segments: nothing to select as the object of interest");
+  const auto wide = [&](const SegmentInfo& s) { return !fragment(s.extent, cfg); };
+  const std::size_t first =
+      std::size_t(std::find_if(info.begin(), info.end(), wide) - info.begin());
+  if (first == info.size()) throw_only_fragments(info.size(), "segments", cfg);
   auto best = [&](auto better) {
-    std::size_t b = 0;
-    for (std::size_t s = 1; s < info.size(); ++s)
-      if (better(info[s], info[b])) b = s;
+    std::size_t b = first;
+    for (std::size_t s = first + 1; s < info.size(); ++s)
+      if (wide(info[s]) && better(info[s], info[b])) b = s;
     return b;
   };
   switch (cfg.by) {
