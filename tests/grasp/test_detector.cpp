@@ -5,8 +5,10 @@
 
 #include "grasp_helpers.hpp"
 #include "objects.hpp"
+#include "shapes.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/grasp/detector.hpp"
+#include "uwgrasp/io/pcd.hpp"
 
 namespace uwgrasp::grasp {
 
@@ -245,6 +247,28 @@ TEST(Detector, BadInputIsAClearError) {
   for (int k = 0; k < 20; ++k)
     ASSERT_NE(message(holed, r).find("point 700 is not finite"), std::string::npos) << k;
   EXPECT_EQ(message(obj.cloud, good), "");
+}
+
+// A real frame (mOSD_learn25, objects on a table): the nearest "object" with no width asked of
+// it is a 49-point fragment at the image's corner; asked to be wider than min_extent, it is the
+// frame's objects (two touching boxes here, one connected object). Oracle: the frame's own
+// `label` field (1-9 the table, 20 and up the objects' parts).
+TEST(Detector, NearestOnARealFrameIsTheObjectsNotAFragment) {
+  UWGRASP_DATA_OR_SKIP(path, "clouds/mOSD_learn25.pcd");
+  const Cloud in = io::load_cloud(path);
+  ASSERT_TRUE(in.has_labels());
+  segment::SegmentConfig seg;  // the defaults
+  seg.object.by = segment::ObjectBy::nearest;
+  const segment::Scene scene = segment::segment_scene(in, cloud::PreprocessConfig{}, seg, 1);
+  std::size_t selected = 0;
+  const Cloud object = object_points(scene, seg.object, selected);
+  ASSERT_GT(object.size(), 10000u);
+  const auto on_objects = std::count_if(object.labels.begin(), object.labels.end(),
+                                        [](std::uint32_t l) { return l >= 20; });
+  EXPECT_GT(double(on_objects), 0.95 * double(object.size()));
+  seg.object.min_extent = 0.0f;
+  EXPECT_LT(object_points(scene, seg.object, selected).size(), 100u)
+      << "the frame no longer provokes the failure";
 }
 
 }  // namespace uwgrasp::grasp
