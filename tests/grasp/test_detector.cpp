@@ -251,7 +251,7 @@ TEST(Detector, BadInputIsAClearError) {
 
 // A real frame (mOSD_learn25, objects on a table): the nearest "object" with no width asked of
 // it is a 49-point fragment at the image's corner; asked to be wider than min_extent, it is the
-// frame's objects (two touching boxes here, one connected object). Oracle: the frame's own
+// frame's objects (two touching objects here, one connected object). Oracle: the frame's own
 // `label` field (1-9 the table, 20 and up the objects' parts).
 TEST(Detector, NearestOnARealFrameIsTheObjectsNotAFragment) {
   UWGRASP_DATA_OR_SKIP(path, "clouds/mOSD_learn25.pcd");
