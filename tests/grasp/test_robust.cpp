@@ -4,6 +4,8 @@
 #include <vector>
 
 #include "grasp_helpers.hpp"
+#include "uwgrasp/grasp/frames.hpp"
+#include "uwgrasp/grasp/gate.hpp"
 #include "uwgrasp/grasp/gripper.hpp"
 #include "uwgrasp/grasp/robust.hpp"
 
@@ -65,4 +67,42 @@ TEST(Robustness, MorePosesContinueTheSameStream) {
   EXPECT_GT((a.position - b.position).norm(), 0.0f);
   // The default measurement is the first 16 of the stream.
   EXPECT_EQ(grasp::robustness(m, c, which, cfg, 3), first);
+}
+
+// A neighbour's face 2 mm outside the right finger of a centred grasp (grasp.score.robust.scene):
+// the nominal pose clears it, but the perturbed poses that move the finger 2 mm its way hit it.
+// Asked of the rest of the scene too, those poses do not hold; no pose that fails without the
+// scene holds with it.
+TEST(Robustness, PosesThatHitANeighbourDoNotHold) {
+  const BoxModel box;
+  const grasp::Frames frames = grasp::make_frames({});
+  std::vector<Eigen::Vector3f> wall;  // camera frame; y = 0.052 in L, beside the box
+  for (float x = -0.03f; x <= 0.03f; x += 0.002f)
+    for (float z = 0.0f; z <= 0.06f; z += 0.002f)
+      wall.push_back(
+          (frames.level_from_camera.inverse() * Eigen::Vector3d(x, 0.052, z)).cast<float>());
+  const grasp::Surroundings scene{wall};
+  const grasp::OcclusionConfig occlusion;
+  const grasp::ReachConfig reach;
+  const grasp::Gate gate(
+      {box.bvh, box.gripper, box.gripper, box.shape, frames, nullptr, occlusion, reach, scene});
+  grasp::ModelView with = box.view();
+  with.scene = &gate;
+  const std::vector<grasp::Candidate> c = {from_above(0.0f), from_above(0.012f)};
+  ASSERT_EQ(gate.gripper_at_pose(c[0]), grasp::Reject::none);
+  ASSERT_TRUE(grasp::holds_on_model(with, c[0], 0.3));
+  const grasp::RobustConfig cfg;
+  const std::vector<std::uint32_t> which = {0, 1};
+  const std::vector<float> alone = grasp::robustness(box.view(), c, which, cfg, 7, 0, 64);
+  const std::vector<float> beside = grasp::robustness(with, c, which, cfg, 7, 0, 64);
+  EXPECT_EQ(alone[0], 1.0f);
+  EXPECT_LT(beside[0], 0.9f);
+  EXPECT_GT(beside[0], 0.1f);
+  for (std::uint32_t k = 0; k < 64; ++k)
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const grasp::Candidate p = grasp::perturb(c[i], cfg, 7, std::uint32_t(i), k);
+      EXPECT_TRUE(!grasp::holds_on_model(with, p, cfg.mu) ||
+                  grasp::holds_on_model(box.view(), p, cfg.mu));
+    }
+  EXPECT_LE(beside[1], alone[1]);
 }

@@ -256,7 +256,8 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
                                 out.frames, cfg.score, out.max_inliers);
   } else {
     const PointBvh core_bvh = model.core.points.empty() ? PointBvh{} : build_bvh(model.core.points);
-    const ModelView view = model_view(model, bvh, core_bvh, l.points.size(), out.shape, cfg.score.robust);
+    ModelView view = model_view(model, bvh, core_bvh, l.points.size(), out.shape, cfg.score.robust);
+    if (cfg.score.robust.scene) view.scene = &gate;
     out.grasps = score_robust(view, model.cloud, pool, out, cfg.score, seed, timer);
   }
   timer.stop();

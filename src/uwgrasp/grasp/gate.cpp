@@ -1,5 +1,6 @@
 #include "uwgrasp/grasp/gate.hpp"
 
+#include <span>
 #include <utility>
 
 namespace uwgrasp::grasp {
@@ -11,8 +12,18 @@ int part_inside(const ObjectShape& shape, const Gripper& g, const Candidate& c) 
   return -1;
 }
 
+namespace {
+ReachConfig without_standoff(ReachConfig r) {
+  r.standoff = 0.0;
+  return r;
+}
+}  // namespace
+
 Gate::Gate(const GateInputs& in)
-    : in_(in), check_(in.model, in.checked), camera_from_level_(in.frames.level_from_camera.inverse()) {
+    : in_(in),
+      check_(in.model, in.checked),
+      camera_from_level_(in.frames.level_from_camera.inverse()),
+      at_pose_(without_standoff(in.reach)) {
   if (!in.reach.enabled) return;
   solids_ = vehicle_solids(in.gripper, in.frames, in.reach);
   obstacles_ = make_obstacles(in.scene, in.frames, in.reach);
@@ -23,7 +34,8 @@ Gate::Gate(const GateInputs& in, std::vector<Solid> solids, Obstacles obstacles)
       check_(in.model, in.checked),
       camera_from_level_(in.frames.level_from_camera.inverse()),
       solids_(std::move(solids)),
-      obstacles_(std::move(obstacles)) {}
+      obstacles_(std::move(obstacles)),
+      at_pose_(without_standoff(in.reach)) {}
 
 Reject Gate::after_check(const Candidate& c) const {
   if (const int part = part_inside(in_.shape, in_.checked, c); part >= 0)
@@ -42,6 +54,11 @@ bool Gate::passes(const Candidate& c, Check* check) const {
   if (!k.feasible() || after_check(c) != Reject::none) return false;
   if (check) *check = k;
   return true;
+}
+
+Reject Gate::gripper_at_pose(const Candidate& c) const {
+  if (!in_.reach.enabled) return Reject::none;
+  return reach_check(obstacles_, std::span(solids_).subspan(1), c, at_pose_);  // [0] is the hull
 }
 
 }  // namespace uwgrasp::grasp

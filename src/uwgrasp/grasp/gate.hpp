@@ -48,6 +48,11 @@ class Gate {
   // Whether it passes every check, the gripper's included; the cheapest first. When it does and
   // `check` is given, the gripper's check (closing region, contacts, width) is stored there.
   bool passes(const Candidate& c, Check* check = nullptr) const;
+  // The reach check of the gripper's parts at the pose alone: scene_collision when one hits the
+  // scene there (its points, the columns under them, the seafloor), else Reject::none (also
+  // with the reach check off). Not the way in, and not the hull: a hull brushing the seafloor
+  // under positioning error moves the vehicle, it does not stop the fingers closing.
+  Reject gripper_at_pose(const Candidate& c) const;
 
  private:
   GateInputs in_;
@@ -55,6 +60,7 @@ class Gate {
   Pose camera_from_level_;
   std::vector<Solid> solids_;
   Obstacles obstacles_;
+  ReachConfig at_pose_;  // in_.reach with no standoff
 };
 
 }  // namespace uwgrasp::grasp

@@ -41,6 +41,7 @@ ContactPrediction predict(const ModelView& m, const Candidate& c) {
 bool holds_on_model(const ModelView& m, const Candidate& c, double mu) {
   const std::vector<Check> check = check_candidates(m.bvh, m.gripper, std::span(&c, 1));
   if (!check[0].feasible() || blocked(m, c)) return false;
+  if (m.scene != nullptr && m.scene->gripper_at_pose(c) != Reject::none) return false;
   const ContactPrediction p = predict(m, c);
   return p.valid && p.mu <= mu;
 }

@@ -13,6 +13,7 @@
 #include "uwgrasp/grasp/bvh.hpp"
 #include "uwgrasp/grasp/contacts.hpp"
 #include "uwgrasp/grasp/feasibility.hpp"
+#include "uwgrasp/grasp/gate.hpp"
 #include "uwgrasp/grasp/shape.hpp"
 
 namespace uwgrasp::grasp {
@@ -39,6 +40,10 @@ struct RobustConfig {
   // judge: top-1s predicted under 0.1 held 4 times in 27, those at 0.2-0.3 71 in 86, those from
   // 0.3 on 96-98 % (2,900 judged top-1s, docs/results/grasps-that-hold.md).
   double min_robustness = 0.1;
+  // Whether the gripper at a perturbed pose must also clear the rest of the scene (its points,
+  // the columns under them, the seafloor), as at the nominal pose: positioning error moves the
+  // fingers into a neighbour as readily as into the object (can_row: 12 of 40 top-1s did).
+  bool scene = true;
 };
 
 // The object's model and the gripper the check uses.
@@ -55,13 +60,17 @@ struct ModelView {
   const PointBvh* core_bvh = nullptr;
   std::span<const Eigen::Vector3f> core_points, core_normals;
   bool core_friction = false;  // RobustConfig::core_friction
+  // The rest of the scene: a pose whose gripper hits it (a neighbour's points or the columns
+  // under them, Gate::gripper_at_pose) does not hold either. Unset: the object alone is asked.
+  const Gate* scene = nullptr;
 };
 
 // The predicted contacts of a candidate the check found feasible: on the model, and when the
 // view has a core, invalid unless the core gives both contacts too (else the pads would close
 // on assumed volume alone); with core_friction, the worse of the two friction estimates.
 ContactPrediction predict(const ModelView& m, const Candidate& c);
-// Whether the candidate holds on the model at mu (check, inside, floor, width, force closure).
+// Whether the candidate holds on the model at mu (check, inside, floor, width, force closure)
+// and, with a scene, whether the gripper there clears the rest of the scene.
 bool holds_on_model(const ModelView& m, const Candidate& c, double mu);
 // The candidate perturbed by draw k of its own stream.
 Candidate perturb(const Candidate& c, const RobustConfig& cfg, std::uint64_t seed,

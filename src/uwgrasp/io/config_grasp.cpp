@@ -95,6 +95,7 @@ void visit_score(Visitor& v, grasp::ScoreConfig& s) {
     v.field("sigma_angle", s.robust.sigma_angle, 0.0, kPi);
     v.field("core_friction", s.robust.core_friction);
     v.field("min_robustness", s.robust.min_robustness, 0.0, 1.0);
+    v.field("scene", s.robust.scene);
   });
   v.section("weights", [&] {
     v.field("normal", s.weights.normal, 0.0, 1e6);
