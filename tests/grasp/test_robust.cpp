@@ -106,3 +106,21 @@ TEST(Robustness, PosesThatHitANeighbourDoNotHold) {
     }
   EXPECT_LE(beside[1], alone[1]);
 }
+
+// A gate given no vehicle solids (the second constructor with an empty list) has no gripper to
+// place at a perturbed pose: nothing is rejected and nothing is read past the list.
+TEST(Robustness, AGateWithoutSolidsRejectsNoPerturbedPose) {
+  const BoxModel box;
+  const grasp::Frames frames = grasp::make_frames({});
+  const grasp::Surroundings scene{};
+  const grasp::OcclusionConfig occlusion;
+  const grasp::ReachConfig reach;
+  ASSERT_TRUE(reach.enabled);
+  const grasp::GateInputs in{box.bvh, box.gripper, box.gripper, box.shape, frames,
+                             nullptr, occlusion,   reach,       scene};
+  const grasp::Gate bare(in, {}, {});
+  const grasp::Gate full(in);
+  const grasp::Candidate c = from_above(0.0f);
+  EXPECT_EQ(bare.gripper_at_pose(c), grasp::Reject::none);
+  EXPECT_EQ(full.gripper_at_pose(c), grasp::Reject::none);
+}

@@ -57,8 +57,9 @@ bool Gate::passes(const Candidate& c, Check* check) const {
 }
 
 Reject Gate::gripper_at_pose(const Candidate& c) const {
-  if (!in_.reach.enabled) return Reject::none;
-  return reach_check(obstacles_, std::span(solids_).subspan(1), c, at_pose_);  // [0] is the hull
+  // [0] is the hull (vehicle_solids' order); a gate given no solids has no gripper to place.
+  if (!in_.reach.enabled || solids_.size() < 2) return Reject::none;
+  return reach_check(obstacles_, std::span(solids_).subspan(1), c, at_pose_);
 }
 
 }  // namespace uwgrasp::grasp
