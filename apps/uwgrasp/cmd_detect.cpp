@@ -121,9 +121,11 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
         "preprocess.water's coefficients (preprocess.water.fallback)\n",
         cfg.segment.object.color.c_str());
   if (!r.shape.empty()) {
-    std::printf("shape: %zu seen points, back mirrored about %zu symmetry plane%s (%zu points)",
-                d.object.size(), r.shape.planes.size(), r.shape.planes.size() == 1 ? "" : "s",
-                r.shape.mirrored_points.size());
+    std::printf(
+        "shape: %zu seen points, surface noise %.1f mm, back mirrored about %zu symmetry "
+        "plane%s (%zu points)",
+        d.object.size(), 1e3 * r.shape.noise, r.shape.planes.size(),
+        r.shape.planes.size() == 1 ? "" : "s", r.shape.mirrored_points.size());
     for (const auto& p : r.shape.planes)
       std::printf(", n_L (%.3f, %.3f, %.3f) %.0f %% on the seen surface", p.normal.x(), p.normal.y(),
                   p.normal.z(), 100.0 * p.support);

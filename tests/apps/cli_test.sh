@@ -53,7 +53,8 @@ if [[ -f "$MUG" ]]; then
   expect 2 "does not exist" -- detect "$MUG" --object label:399 --json "$J"
   # A good run on the mug (the nearest object): the best grasp is printed and grasps.json written.
   if "$BIN" detect "$MUG" --object nearest --json "$T/d1.json" --threads 1 >"$T/stdout" 2>"$T/stderr" &&
-     grep -q "best grasp" "$T/stdout" && grep -q '"orientation_xyzw"' "$T/d1.json"; then
+     grep -q "best grasp" "$T/stdout" && grep -q '"orientation_xyzw"' "$T/d1.json" &&
+     grep -Eq "^shape: [0-9]+ seen points, surface noise [0-9]+\.[0-9] mm" "$T/stdout"; then
     passes=$((passes + 1))
   else
     echo "FAIL: good detect run: $(cat "$T/stderr")"; fails=$((fails + 1))
