@@ -90,7 +90,9 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
   std::vector<float> mean(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const auto& r) {
     std::array<float, kMaxWindow> d2;  // the window's pixels (check_window: at most 224)
-    std::vector<float> best;           // only next to holes
+    // Only next to holes. Each thread's, kept over a stream's frames (the body starts no
+    // parallel work, so no other call can run on this thread while it is in use).
+    thread_local std::vector<float> best;
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       const Eigen::Vector3f pj = points[j];
       std::size_t n = 0;

@@ -171,8 +171,10 @@ void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cf
   constexpr std::size_t kRows = 16;
   const std::size_t blocks = (map.height + kRows - 1) / kRows;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks), [&](const auto& r) {
-    std::vector<char> wanted;  // a task's scratch, over its blocks
-    std::vector<Moments> col;
+    // A task's scratch, over its blocks: each thread's, kept over a stream's frames
+    // (window_moments starts no parallel work).
+    thread_local std::vector<char> wanted;
+    thread_local std::vector<Moments> col;
     for (std::size_t b = r.begin(); b != r.end(); ++b)
       window_moments(cloud, map, full, h, origin, b * kRows,
                      std::min<std::size_t>(map.height, (b + 1) * kRows), wanted, col,

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -44,23 +45,32 @@ void for_each_window_pixel(const PixelMap& map, std::size_t j, int h, F&& f) {
   for (int ring = 1; ring <= h; ++ring) for_each_ring_pixel(map, j, ring, [&](std::size_t s) { f(s, ring); });
 }
 
+// The most pixels a window holds (check_window: h <= 7), for lists on the stack.
+constexpr std::size_t kMaxWindow = 15 * 15;
+
+inline void check_window(std::uint32_t h) {
+  if (h < 1 || h > 7)
+    throw Error("preprocess.organised.half_window must be in [1, 7], got " + std::to_string(h));
+}
+
 // The pixels of a window of half width h around its centre, as offsets in the frame's row-major
 // index, in the order for_each_window_pixel visits them (ring by ring, row-major within a ring),
 // with their rings: a point whose whole window lies in the frame walks the table without a
-// bounds test per pixel (window lists 2.4 -> 1.2 ms on mOSD_learn0, outlier statistic 3.8 -> 3.4 ms).
+// bounds test per pixel (window lists 2.4 -> 1.2 ms on mOSD_learn0, outlier statistic 3.8 -> 3.4
+// ms). Fixed arrays: three tables a frame, none asking the allocator.
 struct WindowTable {
   int h = 0;
-  std::vector<std::ptrdiff_t> offset;
-  std::vector<int> ring;
+  std::size_t size = 0;
+  std::array<std::ptrdiff_t, kMaxWindow> offset{};
+  std::array<int, kMaxWindow> ring{};
   WindowTable(std::uint32_t width, std::uint32_t half) : h(int(half)) {
-    const std::size_t pixels = std::size_t(2 * h + 1) * std::size_t(2 * h + 1) - 1;
-    offset.reserve(pixels), ring.reserve(pixels);  // one allocation each, not one per doubling
+    check_window(half);
     for (int r = 1; r <= h; ++r)
       for (int dv = -r; dv <= r; ++dv) {
         const int step = (dv == -r || dv == r) ? 1 : 2 * r;
         for (int du = -r; du <= r; du += step) {
-          offset.push_back(std::ptrdiff_t(dv) * std::ptrdiff_t(width) + du);
-          ring.push_back(r);
+          offset[size] = std::ptrdiff_t(dv) * std::ptrdiff_t(width) + du;
+          ring[size++] = r;
         }
       }
   }
@@ -75,7 +85,7 @@ void for_each_window_pixel(const PixelMap& map, const WindowTable& t, std::size_
     return;
   }
   const std::int32_t* centre = map.slot.data() + p;
-  for (std::size_t i = 0; i < t.offset.size(); ++i)
+  for (std::size_t i = 0; i < t.size; ++i)
     if (const std::int32_t s = centre[t.offset[i]]; s >= 0) f(std::size_t(s), t.ring[i]);
 }
 
@@ -110,14 +120,6 @@ inline std::size_t window_list(std::span<const Eigen::Vector3f> points, const Pi
     ++c;
   });
   return c;
-}
-
-// The most pixels a window holds (check_window: h <= 7), for lists on the stack.
-constexpr std::size_t kMaxWindow = 15 * 15;
-
-inline void check_window(std::uint32_t h) {
-  if (h < 1 || h > 7)
-    throw Error("preprocess.organised.half_window must be in [1, 7], got " + std::to_string(h));
 }
 
 }  // namespace uwgrasp::cloud::window_detail

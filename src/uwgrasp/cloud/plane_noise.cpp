@@ -28,7 +28,8 @@ double median(std::span<const double> v, double top) {
   for (const double x : v) ++count[bucket(x)];
   std::size_t b = 0, before = 0;
   while (before + count[b] <= k) before += count[b++];
-  std::vector<double> in;
+  thread_local std::vector<double> in;  // each thread's, kept over a stream's frames
+  in.clear();
   in.reserve(count[b]);
   for (const double x : v)
     if (bucket(x) == b) in.push_back(x);
