@@ -39,8 +39,11 @@ ContactPrediction predict(const ModelView& m, const Candidate& c) {
 }
 
 bool holds_on_model(const ModelView& m, const Candidate& c, double mu) {
-  const std::vector<Check> check = check_candidates(m.bvh, m.gripper, std::span(&c, 1));
-  if (!check[0].feasible() || blocked(m, c)) return false;
+  return holds_on_model(m, Checker(m.bvh, m.gripper), c, mu);
+}
+
+bool holds_on_model(const ModelView& m, const Checker& check, const Candidate& c, double mu) {
+  if (!check(c).feasible() || blocked(m, c)) return false;
   if (m.scene != nullptr && m.scene->gripper_at_pose(c) != Reject::none) return false;
   const ContactPrediction p = predict(m, c);
   return p.valid && p.mu <= mu;
@@ -66,9 +69,11 @@ std::vector<float> robustness(const ModelView& m, std::span<const Candidate> can
   std::vector<float> out(which.size(), 0.0f);
   if (samples == 0) return out;
   std::vector<char> held(which.size() * samples, 0);
+  // One checker for every perturbed pose: one per pose was ~1,500 allocations a frame.
+  const Checker check(m.bvh, m.gripper);
   tbb::parallel_for(std::size_t(0), held.size(), [&](std::size_t t) {
     const std::uint32_t i = which[t / samples], k = first + std::uint32_t(t % samples);
-    held[t] = holds_on_model(m, perturb(candidates[i], cfg, seed, i, k), cfg.mu);
+    held[t] = holds_on_model(m, check, perturb(candidates[i], cfg, seed, i, k), cfg.mu);
   });
   for (std::size_t j = 0; j < which.size(); ++j)
     out[j] = float(std::count(held.begin() + std::ptrdiff_t(j * samples),

@@ -72,6 +72,8 @@ ContactPrediction predict(const ModelView& m, const Candidate& c);
 // Whether the candidate holds on the model at mu (check, inside, floor, width, force closure)
 // and, with a scene, whether the gripper there clears the rest of the scene.
 bool holds_on_model(const ModelView& m, const Candidate& c, double mu);
+// The same with the checker of m.bvh and m.gripper made once for many poses.
+bool holds_on_model(const ModelView& m, const Checker& check, const Candidate& c, double mu);
 // The candidate perturbed by draw k of its own stream.
 Candidate perturb(const Candidate& c, const RobustConfig& cfg, std::uint64_t seed,
                   std::uint32_t candidate, std::uint32_t k);
