@@ -7,7 +7,8 @@
 //   top of `segment.object.by=largest`). --alone: each frame's segments,
 //   then its detections, as streams of their own at 1 and 2 threads (or T only), nothing else in
 //   between (as a node that only segments, or only detects, runs them); no other table.
-// Also counts the operator new calls of one more frame of the warm stream (alloc_count.hpp).
+// Also counts the operator new calls of one more frame of the warm stream (alloc_count.hpp). The
+// segments stream reuses one Scene and one Workspace (segment/pipeline.hpp), as a node would.
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -53,13 +54,18 @@ struct Row {
 Row run_uwgrasp(const Cloud& frame, io::Config cfg, int repeats) {
   Row row;
   std::vector<double> seg, grasp, kd;
+  segment::Scene stream;  // a stream's: one Scene and one Workspace, frame after frame
+  segment::Workspace ws;
+  const auto segments = [&] {
+    segment::segment_scene(frame, cfg.preprocess, cfg.segment, cfg.seed, stream, ws);
+  };
   for (int r = 0; r < repeats; ++r) {
-    seg.push_back(time_ms([&] { segment::segment_scene(frame, cfg.preprocess, cfg.segment, cfg.seed); }));
+    seg.push_back(time_ms(segments));
     grasp::Detection d;
     grasp.push_back(time_ms([&] { d = grasp::detect(frame, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed); }));
     for (const auto& st : d.timer.stages()) row.stages[st.name].push_back(st.ms);
   }
-  row.seg_alloc = bench::count_allocations([&] { segment::segment_scene(frame, cfg.preprocess, cfg.segment, cfg.seed); });
+  row.seg_alloc = bench::count_allocations(segments);
   row.grasp_alloc = bench::count_allocations([&] { grasp::detect(frame, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed); });
   cfg.preprocess.organised.enabled = false;
   for (int r = 0; r < std::max(3, repeats / 4); ++r)
@@ -80,10 +86,13 @@ void run_alone(const std::vector<std::pair<std::string, Cloud>>& frames, const i
       const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                       std::size_t(threads));
       std::vector<double> seg, grasp;
+      segment::Scene stream;  // a stream's, as above
+      segment::Workspace ws;
       try {
         for (int r = 0; r < repeats; ++r)
-          seg.push_back(time_ms(
-              [&] { segment::segment_scene(frame, cfg.preprocess, cfg.segment, cfg.seed); }));
+          seg.push_back(time_ms([&] {
+            segment::segment_scene(frame, cfg.preprocess, cfg.segment, cfg.seed, stream, ws);
+          }));
         for (int r = 0; r < repeats; ++r)
           grasp.push_back(time_ms(
               [&] { grasp::detect(frame, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed); }));

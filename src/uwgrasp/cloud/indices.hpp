@@ -7,18 +7,25 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace uwgrasp::cloud {
 
+// Into `out` (its capacity reused: a stream's frames ask the allocator for nothing once it
+// holds a frame's list).
 template <class Keep>
-std::vector<std::uint32_t> indices_where(std::size_t n, Keep keep) {
+void indices_where(std::size_t n, Keep keep, std::vector<std::uint32_t>& out) {
   constexpr std::size_t kChunk = std::size_t(1) << 14;
   const std::size_t chunks = (n + kChunk - 1) / kChunk;
   const auto end = [&](std::size_t c) { return std::min(n, (c + 1) * kChunk); };
-  std::vector<std::size_t> start(chunks + 1, 0);
+  // The chunks' offsets on the stack up to 4M points (a 640 x 480 frame has 19 chunks).
+  constexpr std::size_t kOnStack = 256;
+  std::array<std::size_t, kOnStack + 1> local{};
+  std::vector<std::size_t> heap(chunks > kOnStack ? chunks + 1 : 0, 0);
+  std::size_t* start = chunks > kOnStack ? heap.data() : local.data();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks), [&](const auto& r) {
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
       std::size_t count = 0;
@@ -27,7 +34,7 @@ std::vector<std::uint32_t> indices_where(std::size_t n, Keep keep) {
     }
   });
   for (std::size_t c = 0; c < chunks; ++c) start[c + 1] += start[c];
-  std::vector<std::uint32_t> out(start[chunks]);
+  out.resize(start[chunks]);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks), [&](const auto& r) {
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
       std::uint32_t* at = out.data() + start[c];
@@ -35,6 +42,12 @@ std::vector<std::uint32_t> indices_where(std::size_t n, Keep keep) {
         if (keep(i)) *at++ = static_cast<std::uint32_t>(i);
     }
   });
+}
+
+template <class Keep>
+std::vector<std::uint32_t> indices_where(std::size_t n, Keep keep) {
+  std::vector<std::uint32_t> out;
+  indices_where(n, keep, out);
   return out;
 }
 

@@ -43,11 +43,13 @@ double sum_of_smallest_roots(const float* v, std::size_t n, std::size_t k) {
   return sum - double(in - k) * double(std::sqrt(top));
 }
 
-// Offers d2 to best, the k smallest so far in ascending order.
-void offer(std::vector<float>& best, std::size_t k, float d2) {
-  if (best.size() == k && d2 >= best.back()) return;
-  if (best.size() == k) best.pop_back();
-  best.insert(std::upper_bound(best.begin(), best.end(), d2), d2);
+// Offers d2 to best[0, size), the k smallest so far in ascending order (room for k).
+void offer(float* best, std::size_t& size, std::size_t k, float d2) {
+  if (size == k && d2 >= best[size - 1]) return;
+  if (size == k) --size;
+  float* const at = std::upper_bound(best, best + size, d2);
+  std::move_backward(at, best + size, best + size + 1);
+  *at = d2, ++size;
 }
 }  // namespace
 
@@ -65,10 +67,18 @@ PixelMap pixel_map(std::uint32_t width, std::uint32_t height, std::vector<std::u
 
 Neighbours window_neighbours(std::span<const Eigen::Vector3f> points, const PixelMap& map,
                              const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint) {
-  check_window(cfg.half_window);
-  const Ranges range(points, viewpoint);
-  const WindowTable table(map.width, cfg.half_window);
   Neighbours nb;
+  WindowScratch scratch;
+  window_neighbours(points, map, cfg, viewpoint, nb, scratch);
+  return nb;
+}
+
+void window_neighbours(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                       const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint, Neighbours& nb,
+                       WindowScratch& scratch) {
+  check_window(cfg.half_window);
+  const std::span<const float> range = ranges(points, viewpoint, scratch.range);
+  const WindowTable table(map.width, cfg.half_window);
   nb.k = std::size_t(2 * cfg.half_window + 1) * (2 * cfg.half_window + 1), nb.window = true;
   nb.indices.resize(points.size() * nb.k), nb.sq_dists.resize(points.size() * nb.k);
   nb.count.resize(points.size());
@@ -77,22 +87,29 @@ Neighbours window_neighbours(std::span<const Eigen::Vector3f> points, const Pixe
       nb.count[j] = std::uint32_t(window_list(points, map, table, cfg.depth_change, range, j,
                                               &nb.indices[j * nb.k], &nb.sq_dists[j * nb.k]));
   });
-  return nb;
 }
 
 std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points,
                                          const PixelMap& map, std::uint32_t half_window,
                                          std::uint32_t k) {
+  std::vector<float> mean;
+  window_mean_distances(points, map, half_window, k, mean);
+  return mean;
+}
+
+void window_mean_distances(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                           std::uint32_t half_window, std::uint32_t k, std::vector<float>& mean) {
   check_window(half_window);
   k = std::max<std::uint32_t>(k, 1);
   const int widest = int(kGrowth * half_window);
   const WindowTable table(map.width, half_window);
-  std::vector<float> mean(points.size());
+  mean.resize(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](const auto& r) {
     std::array<float, kMaxWindow> d2;  // the window's pixels (check_window: at most 224)
-    // Only next to holes. Each thread's, kept over a stream's frames (the body starts no
-    // parallel work, so no other call can run on this thread while it is in use).
-    thread_local std::vector<float> best;
+    // The k nearest next to holes: on the stack, or for a k above a window's pixels a list.
+    std::array<float, kMaxWindow> nearest;
+    std::vector<float> many(k > kMaxWindow ? k : 0);
+    float* const best = k > kMaxWindow ? many.data() : nearest.data();
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       const Eigen::Vector3f pj = points[j];
       std::size_t n = 0;
@@ -106,22 +123,22 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
       }
       // Fewer than k pixels in play: whole rings more, next to a hole or a removed plane, where
       // a k-d tree search finds the k nearest further out in the image.
-      best.assign(d2.begin(), d2.begin() + std::ptrdiff_t(n));
-      std::sort(best.begin(), best.end());
+      std::size_t size = n;  // n < k
+      std::copy_n(d2.begin(), n, best);
+      std::sort(best, best + size);
       for (int ring = int(half_window) + 1; ring <= widest && n < k; ++ring)
         for_each_ring_pixel(map, j, ring, [&](std::size_t s) {
-          ++n, offer(best, k, (points[s] - pj).squaredNorm());
+          ++n, offer(best, size, k, (points[s] - pj).squaredNorm());
         });
-      if (best.empty()) {
+      if (size == 0) {
         mean[j] = std::numeric_limits<float>::infinity();
         continue;
       }
       double sum = 0.0;
-      for (const float b : best) sum += std::sqrt(b);
-      mean[j] = float(sum / double(best.size()));
+      for (std::size_t b = 0; b < size; ++b) sum += std::sqrt(best[b]);
+      mean[j] = float(sum / double(size));
     }
   });
-  return mean;
 }
 
 }  // namespace uwgrasp::cloud

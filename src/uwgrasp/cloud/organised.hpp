@@ -6,6 +6,7 @@
 // allowance grows with range, as a depth sensor's noise and pixel footprint do, and with d, so a
 // slanted surface stays one neighbourhood while a step to the background does not.
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -36,6 +37,19 @@ struct PixelMap {
   std::vector<std::uint32_t> pixel;
 };
 
+// The pixel windows' buffers (window_neighbours, window_normals, window_normals_of), for a
+// caller that keeps them over a stream of frames (workspace.hpp).
+struct WindowScratch {
+  std::vector<float> range;              // each point's distance from the viewpoint
+  std::vector<char> full;                // the points the normals take from running sums
+  std::vector<float> image, lo, hi;      // the range image and its sliding minima and maxima
+  std::vector<std::size_t> first, last;  // each image row's in-play columns
+  // The running sums' per-column moments (n, x, y, z, xx, xy, xz, yy, yz, zz), a frame row of
+  // them per block of rows, and which rows of each block hold a point to compute.
+  std::vector<std::array<double, 10>> columns;
+  std::vector<char> wanted;
+};
+
 // The map of `pixels` (ascending pixel indices of a width x height frame).
 PixelMap pixel_map(std::uint32_t width, std::uint32_t height, std::vector<std::uint32_t> pixels);
 
@@ -45,6 +59,9 @@ PixelMap pixel_map(std::uint32_t width, std::uint32_t height, std::vector<std::u
 // `viewpoint` is the sensor origin the ranges are measured from.
 Neighbours window_neighbours(std::span<const Eigen::Vector3f> points, const PixelMap& map,
                              const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint);
+void window_neighbours(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                       const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint,
+                       Neighbours& out, WindowScratch& scratch);
 
 // The statistic of statistical outlier removal (4.1.3) over the window: each point's mean
 // distance to its k nearest points among every pixel of its window still in play (continuous or
@@ -57,6 +74,8 @@ Neighbours window_neighbours(std::span<const Eigen::Vector3f> points, const Pixe
 std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points,
                                          const PixelMap& map, std::uint32_t half_window,
                                          std::uint32_t k);
+void window_mean_distances(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                           std::uint32_t half_window, std::uint32_t k, std::vector<float>& mean);
 
 // Normals and curvature (4.2.1, eq. 4.4-4.7) over each point's window of normal_half_window:
 // its continuous in-play pixels, as for window_neighbours. A point whose whole window qualifies
@@ -64,10 +83,13 @@ std::vector<float> window_mean_distances(std::span<const Eigen::Vector3f> points
 // the window size); the others sum their pixels. Fills cloud.normals and cloud.curvature;
 // map.pixel[j] is the pixel of cloud.points[j].
 void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg);
+void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg,
+                    WindowScratch& scratch);
 
-// The same normals (summing the pixels, for a few points) of points[which[i]] only: out[i].
-std::vector<PointNormal> window_normals_of(std::span<const Eigen::Vector3f> points, const PixelMap& map,
-                                           const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint,
-                                           std::span<const std::uint32_t> which);
+// The same normals (summing the pixels, for a few points) of points[which[i]] only, into out[i].
+void window_normals_of(std::span<const Eigen::Vector3f> points, const PixelMap& map,
+                       const OrganisedConfig& cfg, const Eigen::Vector3f& viewpoint,
+                       std::span<const std::uint32_t> which, std::vector<PointNormal>& out,
+                       WindowScratch& scratch);
 
 }  // namespace uwgrasp::cloud

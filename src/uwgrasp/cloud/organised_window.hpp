@@ -89,31 +89,31 @@ void for_each_window_pixel(const PixelMap& map, const WindowTable& t, std::size_
     if (const std::int32_t s = centre[t.offset[i]]; s >= 0) f(std::size_t(s), t.ring[i]);
 }
 
-// Each point's distance from the viewpoint, for the continuity test (in parallel: a frame's
-// 250k square roots, three times a frame).
-struct Ranges {
-  std::vector<float> r;
-  Ranges(std::span<const Eigen::Vector3f> points, const Eigen::Vector3f& viewpoint)
-      : r(points.size()) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 8192), [&](const auto& b) {
-      for (std::size_t j = b.begin(); j != b.end(); ++j) r[j] = (points[j] - viewpoint).norm();
-    });
-  }
-};
+// Each point's distance from the viewpoint, for the continuity test, into `r` (in parallel: a
+// frame's 250k square roots, three times a frame).
+inline std::span<const float> ranges(std::span<const Eigen::Vector3f> points,
+                                     const Eigen::Vector3f& viewpoint, std::vector<float>& r) {
+  r.resize(points.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 8192), [&](const auto& b) {
+    for (std::size_t j = b.begin(); j != b.end(); ++j) r[j] = (points[j] - viewpoint).norm();
+  });
+  return r;
+}
 
 // Point j, then the continuous in-play pixels of its window ring by ring, into idx (and their
 // squared distances into d2 unless null); returns how many.
 inline std::size_t window_list(std::span<const Eigen::Vector3f> points, const PixelMap& map,
-                               const WindowTable& table, float depth_change, const Ranges& range,
-                               std::size_t j, std::uint32_t* idx, float* d2) {
-  const float rj = range.r[j];
+                               const WindowTable& table, float depth_change,
+                               std::span<const float> range, std::size_t j, std::uint32_t* idx,
+                               float* d2) {
+  const float rj = range[j];
   std::size_t c = 0;
   idx[c] = std::uint32_t(j);
   if (d2) d2[c] = 0.0f;
   ++c;
   for_each_window_pixel(map, table, j, [&](std::size_t s, int ring) {
     // Symmetric continuity: the allowance uses the mean of the two ranges.
-    const float rs = range.r[s];
+    const float rs = range[s];
     if (std::abs(rs - rj) > depth_change * float(ring) * 0.5f * (rs + rj)) return;
     idx[c] = std::uint32_t(s);
     if (d2) d2[c] = (points[s] - points[j]).squaredNorm();

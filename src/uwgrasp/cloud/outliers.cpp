@@ -32,6 +32,14 @@ Filtered unchanged(const Cloud& in) {
 
 Filtered remove_outliers_by(const Cloud& in, const OutlierConfig& cfg,
                             const std::vector<float>& mean) {
+  if (mean.size() != in.size()) throw Error("outliers: the mean distances do not fit this cloud");
+  std::vector<char> keep;
+  outlier_mask(cfg, mean, keep);
+  return keep_if(in, keep);
+}
+
+void outlier_mask(const OutlierConfig& cfg, const std::vector<float>& mean,
+                  std::vector<char>& keep) {
   // mu and the sample standard deviation over the points, summed in order (deterministic).
   double sum = 0.0, sq_sum = 0.0, n = 0.0;
   for (float m : mean)
@@ -39,9 +47,8 @@ Filtered remove_outliers_by(const Cloud& in, const OutlierConfig& cfg,
   const double mu = n > 0.0 ? sum / n : 0.0;
   const double var = n > 1.0 ? std::max(0.0, (sq_sum - sum * sum / n) / (n - 1.0)) : 0.0;
   const double threshold = mu + cfg.std_mul * std::sqrt(var);
-  std::vector<char> keep(in.size());
-  for (std::size_t i = 0; i < in.size(); ++i) keep[i] = mean[i] <= threshold;
-  return keep_if(in, keep);
+  keep.resize(mean.size());
+  for (std::size_t i = 0; i < mean.size(); ++i) keep[i] = mean[i] <= threshold;
 }
 
 std::vector<float> mean_neighbour_distances(const Cloud& in, std::uint32_t k) {

@@ -25,6 +25,9 @@ Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg);
 // out of mu and sigma.
 Filtered remove_outliers_by(const Cloud& in, const OutlierConfig& cfg,
                             const std::vector<float>& mean);
+// Which points remove_outliers_by keeps: keep[i] = 1, into `keep` (its capacity reused).
+void outlier_mask(const OutlierConfig& cfg, const std::vector<float>& mean,
+                  std::vector<char>& keep);
 Filtered remove_outliers(const Cloud& in, const OutlierConfig& cfg, const Neighbours& nb);
 
 // The per-point mean neighbour distances (exposed for tests and diagnostics).

@@ -18,8 +18,9 @@ namespace {
 // The element at size/2 of v sorted (what nth_element there gives), by a histogram of 1024
 // buckets over [0, top] first: only the bucket that holds it is then selected from (a frame's
 // floor bin holds 10^5 distances; nth_element over all of them took ~1 ms a bin). Values are
-// in [0, top]; the bucket of a value never decreases with it, so the answer is exact.
-double median(std::span<const double> v, double top) {
+// in [0, top]; the bucket of a value never decreases with it, so the answer is exact. `work`
+// (v.size() values) takes the bucket's values.
+double median(std::span<const double> v, double top, std::span<double> work) {
   constexpr std::size_t kBuckets = 1024;
   const std::size_t k = v.size() / 2;
   const double scale = top > 0.0 ? double(kBuckets) / top : 0.0;
@@ -28,13 +29,11 @@ double median(std::span<const double> v, double top) {
   for (const double x : v) ++count[bucket(x)];
   std::size_t b = 0, before = 0;
   while (before + count[b] <= k) before += count[b++];
-  thread_local std::vector<double> in;  // each thread's, kept over a stream's frames
-  in.clear();
-  in.reserve(count[b]);
+  std::size_t n = 0;
   for (const double x : v)
-    if (bucket(x) == b) in.push_back(x);
-  const auto mid = in.begin() + std::ptrdiff_t(k - before);
-  std::nth_element(in.begin(), mid, in.end());
+    if (bucket(x) == b) work[n++] = x;
+  const auto mid = work.begin() + std::ptrdiff_t(k - before);
+  std::nth_element(work.begin(), mid, work.begin() + std::ptrdiff_t(n));
   return *mid;
 }
 
@@ -46,20 +45,18 @@ long bin_of(double range, double bin) {
 }
 double bin_centre(long b, double bin) { return (double(b) + 0.5) * bin; }
 
-// A range bin: its index and the distances collected in it.
-struct Bin {
-  long key = 0;
-  std::span<const double> values;
-};
+using Bin = NoiseScratch::Bin;
 
-// The band's distances grouped by range bin, bins ascending, into `flat` (each bin's distances
-// contiguous, in band order): a counting sort over fixed blocks of the band, in parallel (a
-// serial pass of push_backs took 0.3 ms of a frame's 150k band points). A bin's median does
-// not depend on the order of its values.
-std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<double>& dist,
-                       std::vector<double>& flat) {
-  std::vector<Bin> bins;
-  if (bin_key.empty()) return bins;
+// The band's distances grouped by range bin, bins ascending, into scratch.flat and scratch.bins
+// (each bin's distances contiguous, in band order): a counting sort over fixed blocks of the
+// band, in parallel (a serial pass of push_backs took 0.3 ms of a frame's 150k band points). A
+// bin's median does not depend on the order of its values.
+void group(const std::vector<long>& bin_key, const std::vector<double>& dist,
+           NoiseScratch& scratch) {
+  std::vector<double>& flat = scratch.flat;
+  std::vector<Bin>& bins = scratch.bins;
+  flat.clear(), bins.clear();
+  if (bin_key.empty()) return;
   // Plain values, not a structured binding: lambdas below use lo (clang 14 cannot capture one).
   const auto range = std::minmax_element(bin_key.begin(), bin_key.end());
   const long lo = *range.first, hi = *range.second;
@@ -71,17 +68,19 @@ std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<doubl
     std::size_t at = 0;
     for (auto& [k, v] : by_key)
       bins.push_back({k, std::span<const double>(flat).subspan(at, v.size())}), at += v.size();
-    return bins;
+    return;
   }
   constexpr std::size_t kBlock = std::size_t(1) << 14;
   const std::size_t blocks = (bin_key.size() + kBlock - 1) / kBlock;
   const auto block_end = [&](std::size_t c) { return std::min(bin_key.size(), (c + 1) * kBlock); };
-  std::vector<std::size_t> at(blocks * span, 0);  // block c's count, then its start, per bin
+  std::vector<std::size_t>& at = scratch.at;  // block c's count, then its start, per bin
+  at.assign(blocks * span, 0);
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t c) {
     for (std::size_t j = c * kBlock; j < block_end(c); ++j)
       ++at[c * span + std::size_t(bin_key[j] - lo)];
   });
-  std::vector<std::size_t> size(span, 0);
+  std::vector<std::size_t>& size = scratch.size;
+  size.assign(span, 0);
   std::size_t start = 0;
   for (std::size_t b = 0; b < span; ++b)
     for (std::size_t c = 0; c < blocks; ++c) {
@@ -99,28 +98,41 @@ std::vector<Bin> group(const std::vector<long>& bin_key, const std::vector<doubl
       bins.push_back({lo + long(b), std::span<const double>(flat).subspan(start, size[b])});
     start += size[b];
   }
-  return bins;
 }
 
 }  // namespace
 
 NoiseModel plane_noise(const Cloud& cloud, const Eigen::Vector4f& plane, float band, double bin,
                        std::size_t min_points) {
+  NoiseScratch scratch;
+  return plane_noise(cloud, plane, band, bin, min_points, scratch);
+}
+
+NoiseModel plane_noise(const Cloud& cloud, const Eigen::Vector4f& plane, float band, double bin,
+                       std::size_t min_points, NoiseScratch& scratch) {
   const auto dist = [&](std::size_t i) { return std::abs(double(plane.head<3>().dot(cloud.points[i]) + plane[3])); };
   // The band's points, their bins and distances in parallel, then one pass into per-bin lists
   // and the bins' medians in parallel (serially, a frame's floor took 2 ms of the plane stage).
-  const std::vector<std::uint32_t> in_band = indices_where(cloud.size(), [&](std::size_t i) { return dist(i) <= band; });
-  std::vector<long> bin_key(in_band.size());
-  std::vector<double> band_dist(in_band.size());
+  std::vector<std::uint32_t>& in_band = scratch.in_band;
+  indices_where(
+      cloud.size(), [&](std::size_t i) { return dist(i) <= band; }, in_band);
+  std::vector<long>& bin_key = scratch.bin_key;
+  std::vector<double>& band_dist = scratch.distance;
+  bin_key.resize(in_band.size()), band_dist.resize(in_band.size());
   tbb::parallel_for(std::size_t(0), in_band.size(), [&](std::size_t j) {
     bin_key[j] = bin_of((cloud.points[in_band[j]] - cloud.viewpoint).norm(), bin);
     band_dist[j] = dist(in_band[j]);
   });
-  std::vector<double> flat;
-  const std::vector<Bin> bins = group(bin_key, band_dist, flat);
-  std::vector<double> sigma(bins.size(), 0.0);
+  group(bin_key, band_dist, scratch);
+  scratch.work.resize(scratch.flat.size());  // the bins' medians select in their own slices
+  const std::vector<Bin>& bins = scratch.bins;
+  std::vector<double>& sigma = scratch.sigma;
+  sigma.assign(bins.size(), 0.0);
   tbb::parallel_for(std::size_t(0), bins.size(), [&](std::size_t b) {
-    if (bins[b].values.size() >= min_points) sigma[b] = 1.4826 * median(bins[b].values, double(band));
+    const std::span<const double> v = bins[b].values;
+    const std::size_t at = std::size_t(v.data() - scratch.flat.data());  // its slice of work
+    if (v.size() >= min_points)
+      sigma[b] = 1.4826 * median(v, double(band), std::span(scratch.work).subspan(at, v.size()));
   });
   // sigma_b = sigma0 + sigma_k r_b^2, least squares over the bins (weighted equally), in order.
   Eigen::Matrix2d a = Eigen::Matrix2d::Zero();

@@ -10,6 +10,9 @@
 // the measured noise instead.
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
 
 #include "uwgrasp/core/cloud.hpp"
 
@@ -27,7 +30,25 @@ struct NoiseModel {
 // it (the seafloor's points are most of each bin's, the objects' feet few), then the
 // least-squares law over the bins of at least `min_points`, clamped to sigma0, sigma_k >= 0.
 // Not found with fewer than two bins.
+constexpr double kNoiseBin = 0.25;  // m
+constexpr std::size_t kNoiseMinPoints = 200;
 NoiseModel plane_noise(const Cloud& cloud, const Eigen::Vector4f& plane, float band,
-                       double bin = 0.25, std::size_t min_points = 200);
+                       double bin = kNoiseBin, std::size_t min_points = kNoiseMinPoints);
+
+// Its buffers, for a caller that keeps them over a stream of frames (workspace.hpp): the band's
+// points, their range bins and distances, grouped by bin.
+struct NoiseScratch {
+  struct Bin {
+    long key = 0;
+    std::span<const double> values;
+  };
+  std::vector<std::uint32_t> in_band;
+  std::vector<long> bin_key;
+  std::vector<double> distance, flat, work, sigma;
+  std::vector<std::size_t> at, size;
+  std::vector<Bin> bins;
+};
+NoiseModel plane_noise(const Cloud& cloud, const Eigen::Vector4f& plane, float band, double bin,
+                       std::size_t min_points, NoiseScratch& scratch);
 
 }  // namespace uwgrasp::cloud

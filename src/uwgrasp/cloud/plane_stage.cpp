@@ -33,9 +33,12 @@ std::int64_t floor_int(float x) {
 // 200k inliers took 3 ms to fill), else a hash set.
 class CellSet {
  public:
+  // `cells` and `bits` are the caller's buffers (PlaneScratch), kept over a stream of frames.
   template <class UV>
-  CellSet(const Cloud& cur, const std::vector<std::uint32_t>& inliers, UV uv) {
-    std::vector<std::pair<std::int64_t, std::int64_t>> cells(inliers.size());
+  CellSet(const Cloud& cur, const std::vector<std::uint32_t>& inliers, UV uv,
+          std::vector<std::pair<std::int64_t, std::int64_t>>& cells, std::vector<char>& bits)
+      : bits_(bits) {
+    cells.resize(inliers.size());
     tbb::parallel_for(std::size_t(0), inliers.size(), [&](std::size_t k) { cells[k] = uv(cur.points[inliers[k]]); });
     if (cells.empty()) return;
     lo_ = hi_ = cells.front();
@@ -71,17 +74,18 @@ class CellSet {
   Cell lo_{0, 0}, hi_{-1, -1};
   std::int64_t width_ = 0;
   bool dense_ = true;
-  std::vector<char> bits_;
+  std::vector<char>& bits_;
   std::unordered_set<std::int64_t> set_;
 };
 }  // namespace
 
 // The plane's inliers again, within max(distance, noise_sigmas x sigma(range)) of it: the noise
 // is measured twice, the second time in a band wide enough for the first estimate's spread.
-void widen_to_noise(const Cloud& cur, const PlaneConfig& cfg, Preprocessed& out) {
+void widen_to_noise(const Cloud& cur, const PlaneConfig& cfg, Preprocessed& out,
+                    PlaneScratch& scratch) {
   const Eigen::Vector4f& n = out.plane.coefficients;
   float band = std::max(3.0f * cfg.distance, 0.02f);
-  out.noise = plane_noise(cur, n, band);
+  out.noise = plane_noise(cur, n, band, kNoiseBin, kNoiseMinPoints, scratch.noise);
   if (!out.noise.found) return;
   // The widest noise over the inliers: the farthest inlier's (sigma0, sigma_k >= 0, so sigma
   // never falls with range, and the square root never falls with its argument).
@@ -95,29 +99,34 @@ void widen_to_noise(const Cloud& cur, const PlaneConfig& cfg, Preprocessed& out)
       },
       [](float a, float b) { return std::max(a, b); });
   const float widest = in.empty() ? 0.0f : float(out.noise.at(std::sqrt(farthest2)));
-  if (5.0f * widest > band) out.noise = plane_noise(cur, n, 5.0f * widest);
+  if (5.0f * widest > band)
+    out.noise = plane_noise(cur, n, 5.0f * widest, kNoiseBin, kNoiseMinPoints, scratch.noise);
   if (!out.noise.found) return;
-  out.plane.inliers = indices_where(cur.size(), [&](std::size_t i) {
+  const auto inlier = [&](std::size_t i) {
     const Eigen::Vector3f& p = cur.points[i];
     const float d = std::abs(n.head<3>().dot(p) + n[3]);
     if (d <= cfg.distance) return true;  // within the fixed tolerance whatever the noise
     return d <= cfg.noise_sigmas * out.noise.at((p - cur.viewpoint).norm());
-  });
+  };
+  indices_where(cur.size(), inlier, out.plane.inliers);
 }
 
 // Of the widened band's points beyond the fixed tolerance, those whose window normal turns more
 // than normal_angle from the plane's leave the inliers (4.1.4 with the normals, as PCL's
 // organised plane segmentation also tests them).
 void keep_turned_points(const Cloud& cur, const PixelMap& map, const PreprocessConfig& cfg,
-                        PlaneResult& plane) {
+                        PlaneResult& plane, PlaneScratch& scratch, WindowScratch& window) {
   const Eigen::Vector4f& n = plane.coefficients;
-  std::vector<std::uint32_t> band;
+  std::vector<std::uint32_t>& band = scratch.band;
+  band.clear();
   for (const auto i : plane.inliers)
     if (std::abs(n.head<3>().dot(cur.points[i]) + n[3]) > cfg.plane.distance) band.push_back(i);
   if (band.empty()) return;
-  const auto normals = window_normals_of(cur.points, map, cfg.organised, cur.viewpoint, band);
+  std::vector<PointNormal>& normals = scratch.band_normals;
+  window_normals_of(cur.points, map, cfg.organised, cur.viewpoint, band, normals, window);
   const float cos_max = std::cos(cfg.plane.normal_angle * float(std::numbers::pi) / 180.0f);
-  std::vector<char> off(cur.size(), 0);
+  std::vector<char>& off = scratch.off;
+  off.assign(cur.size(), 0);
   for (std::size_t b = 0; b < band.size(); ++b)
     off[band[b]] = std::abs(normals[b].normal.dot(n.head<3>())) < cos_max;
   std::erase_if(plane.inliers, [&](std::uint32_t i) { return off[i] != 0; });
@@ -131,6 +140,12 @@ void keep_turned_points(const Cloud& cur, const PixelMap& map, const PreprocessC
 // it, so those are mismatches (stereo's, a few hundred on a seafloor with only a pipe lying on
 // it, which puts nothing in front), while an object's other faces are a sizeable share of it.
 bool supports_the_rest(const Cloud& cur, const PlaneConfig& cfg, const PlaneResult& plane) {
+  PlaneScratch scratch;
+  return supports_the_rest(cur, cfg, plane, scratch);
+}
+
+bool supports_the_rest(const Cloud& cur, const PlaneConfig& cfg, const PlaneResult& plane,
+                       PlaneScratch& scratch) {
   const Eigen::Vector4f& n = plane.coefficients;
   const Eigen::Vector3f normal = n.head<3>();
   const Eigen::Vector3f a = normal.unitOrthogonal(), b = normal.cross(a);
@@ -138,7 +153,7 @@ bool supports_the_rest(const Cloud& cur, const PlaneConfig& cfg, const PlaneResu
   const auto uv = [&](const Eigen::Vector3f& p) {
     return std::pair(floor_int(a.dot(p) / cell), floor_int(b.dot(p) / cell));
   };
-  const CellSet over(cur, plane.inliers, uv);
+  const CellSet over(cur, plane.inliers, uv, scratch.cells, scratch.bits);
   const float sensor = normal.dot(cur.viewpoint) + n[3];
   using Tally = std::array<std::size_t, 2>;  // front, behind: integer sums, any order
   const Tally t = tbb::parallel_reduce(

@@ -4,8 +4,11 @@
 // depth noise, and points of that band kept off the plane when their normal turns away from it.
 #include "uwgrasp/cloud/organised.hpp"
 #include "uwgrasp/cloud/preprocess.hpp"
+#include "uwgrasp/cloud/workspace.hpp"
 
 namespace uwgrasp::cloud {
+
+// The last arguments are a Workspace's buffers (workspace.hpp).
 
 // Whether the points clearly off the plane (beyond three inlier distances) and over its inliers
 // (their projection along the normal within a cell of an inlier's) lie mostly on the sensor's
@@ -13,14 +16,17 @@ namespace uwgrasp::cloud {
 // object does behind one of its own faces. Points beyond the plane's edge (the room behind a
 // table) do not count either way.
 bool supports_the_rest(const Cloud& cur, const PlaneConfig& cfg, const PlaneResult& plane);
+bool supports_the_rest(const Cloud& cur, const PlaneConfig& cfg, const PlaneResult& plane,
+                       PlaneScratch& scratch);
 
 // The plane's inliers again, within max(distance, noise_sigmas x sigma(range)) of it; sets
 // out.noise and out.plane.inliers.
-void widen_to_noise(const Cloud& cur, const PlaneConfig& cfg, Preprocessed& out);
+void widen_to_noise(const Cloud& cur, const PlaneConfig& cfg, Preprocessed& out,
+                    PlaneScratch& scratch);
 
 // Of the widened band's points beyond the fixed tolerance, those whose window normal turns more
 // than normal_angle from the plane's leave the inliers.
 void keep_turned_points(const Cloud& cur, const PixelMap& map, const PreprocessConfig& cfg,
-                        PlaneResult& plane);
+                        PlaneResult& plane, PlaneScratch& scratch, WindowScratch& window);
 
 }  // namespace uwgrasp::cloud

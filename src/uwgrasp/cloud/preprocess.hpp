@@ -20,6 +20,8 @@
 
 namespace uwgrasp::cloud {
 
+struct Workspace;  // workspace.hpp
+
 struct PreprocessConfig {
   WaterColorConfig water;  // colour restoration, first after invalid values (off by default)
   RangeConfig range;
@@ -62,6 +64,11 @@ struct Preprocessed {
 // then give way to the window.
 Preprocessed preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed,
                         StageTimer& timer, std::size_t share_k = 0);
+// The same into `out`, with `ws`'s buffers: a stream of frames preprocessed into one
+// Preprocessed through one Workspace (workspace.hpp) asks the allocator for nothing on the
+// organised path once both have grown to the frames. After a throw, `out` holds no result.
+void preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed, StageTimer& timer,
+                Preprocessed& out, Workspace& ws, std::size_t share_k = 0);
 
 // One line on which path preprocess takes for this cloud and why, e.g. "organised (640 x 480
 // frame, 5 x 5 pixel windows)" or "k-d tree (unorganised cloud)", for the CLI to print.

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <memory>
 #include <utility>
 #include <vector>
 
@@ -36,10 +35,11 @@ Pass field(int shift, int width) { return {shift, (std::uint64_t(1) << width) - 
 // each chunk's output offsets are laid out bucket by bucket in chunk order, and every chunk
 // scatters its own range in parallel: exactly the order of a sequential pass at any thread
 // count. Returns where each bucket starts in dst (plus n at the end).
-std::vector<std::uint32_t> global_pass(const std::uint64_t* src, std::uint64_t* dst, std::size_t n, Pass pass) {
+void global_pass(const std::uint64_t* src, std::uint64_t* dst, std::size_t n, Pass pass,
+                 std::vector<std::uint32_t>& hist, std::vector<std::uint32_t>& starts) {
   const std::size_t buckets = pass.mask + 1, chunks = std::clamp<std::size_t>(n / 32768, 1, 16);
   const auto begin = [&](std::size_t c) { return n * c / chunks; };
-  std::vector<std::uint32_t> hist(chunks * buckets, 0u), starts(buckets + 1);
+  hist.assign(chunks * buckets, 0u), starts.resize(buckets + 1);
   tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
     std::uint32_t* h = &hist[c * buckets];
     for (std::size_t j = begin(c); j < begin(c + 1); ++j) ++h[pass.digit(src[j])];
@@ -58,7 +58,6 @@ std::vector<std::uint32_t> global_pass(const std::uint64_t* src, std::uint64_t* 
     std::uint32_t* next = &hist[c * buckets];
     for (std::size_t j = begin(c); j < begin(c + 1); ++j) dst[next[pass.digit(src[j])]++] = src[j];
   });
-  return starts;
 }
 
 // Stable sort of m items on `pass`'s field by insertion; for buckets of a few dozen items.
@@ -98,20 +97,27 @@ void local_sort(std::uint64_t* from, std::uint64_t* to, std::size_t m, int lo, i
 }  // namespace
 
 void radix_sort(std::span<std::uint64_t> items, int lo, int bits) {
+  RadixScratch scratch;
+  radix_sort(items, lo, bits, scratch);
+}
+
+void radix_sort(std::span<std::uint64_t> items, int lo, int bits, RadixScratch& buffers) {
   const std::size_t n = items.size();
   if (n < 2 || bits <= 0) return;
-  const std::unique_ptr<std::uint64_t[]> scratch(new std::uint64_t[n]);
+  buffers.items.resize(n);  // only written before it is read: no fill
+  std::uint64_t* const scratch = buffers.items.data();
   if (n <= kSequential) {
-    std::copy_n(items.data(), n, scratch.get());
-    local_sort<kSequentialBits>(scratch.get(), items.data(), n, lo, bits);
+    std::copy_n(items.data(), n, scratch);
+    local_sort<kSequentialBits>(scratch, items.data(), n, lo, bits);
     return;
   }
   const int top = std::min(bits, kTopBits), rest = bits - top;
-  const std::vector<std::uint32_t> starts = global_pass(items.data(), scratch.get(), n, field(lo + rest, top));
+  std::vector<std::uint32_t>& starts = buffers.starts;
+  global_pass(items.data(), scratch, n, field(lo + rest, top), buffers.histogram, starts);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, starts.size() - 1, 16), [&](const auto& r) {
     for (std::size_t d = r.begin(); d != r.end(); ++d) {
       const std::size_t a = starts[d], m = starts[d + 1] - a;
-      local_sort<kLocalBits>(scratch.get() + a, items.data() + a, m, lo, rest);
+      local_sort<kLocalBits>(scratch + a, items.data() + a, m, lo, rest);
     }
   });
 }

@@ -4,6 +4,7 @@
 // instead of a separate key and index.
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace uwgrasp::cloud {
 
@@ -13,5 +14,12 @@ namespace uwgrasp::cloud {
 // then each bucket sorts on the rest in cache; up to 32768 items, one thread sorts them all in
 // cache.
 void radix_sort(std::span<std::uint64_t> items, int lo, int bits);
+
+// Its buffers, for a caller that sorts a stream of frames' items (capacities reused).
+struct RadixScratch {
+  std::vector<std::uint64_t> items;
+  std::vector<std::uint32_t> histogram, starts;
+};
+void radix_sort(std::span<std::uint64_t> items, int lo, int bits, RadixScratch& scratch);
 
 }  // namespace uwgrasp::cloud

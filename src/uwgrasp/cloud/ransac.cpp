@@ -63,8 +63,10 @@ bool within(const Eigen::Vector4f& m, const Eigen::Vector3f& p, float tol) {
   return std::abs(m.head<3>().dot(p) + m[3]) <= tol;
 }
 
-std::vector<std::uint32_t> select_inliers(const Cloud& in, const Eigen::Vector4f& m, float tol) {
-  return indices_where(in.size(), [&](std::size_t i) { return within(m, in.points[i], tol); });
+void select_inliers(const Cloud& in, const Eigen::Vector4f& m, float tol,
+                    std::vector<std::uint32_t>& out) {
+  indices_where(
+      in.size(), [&](std::size_t i) { return within(m, in.points[i], tol); }, out);
 }
 }  // namespace
 
@@ -110,7 +112,14 @@ Eigen::Vector4f least_squares_plane(const Cloud& in, const Eigen::Vector4f& plan
 
 PlaneResult fit_plane(const Cloud& in, const PlaneConfig& cfg, std::uint64_t seed) {
   PlaneResult res;
-  if (in.size() < 3) return res;
+  fit_plane(in, cfg, seed, res);
+  return res;
+}
+
+void fit_plane(const Cloud& in, const PlaneConfig& cfg, std::uint64_t seed, PlaneResult& res) {
+  res.found = false, res.coefficients.setZero(), res.iterations = 0;
+  res.inliers.clear();
+  if (in.size() < 3) return;
   const double n = static_cast<double>(in.size());
   std::uint32_t budget = cfg.max_iterations, best_count = 0;
   Eigen::Vector4f best = Eigen::Vector4f::Zero();
@@ -131,15 +140,14 @@ PlaneResult fit_plane(const Cloud& in, const PlaneConfig& cfg, std::uint64_t see
     }
   }
   res.iterations = drawn;
-  if (best_count < 3 || best_count < cfg.min_inlier_ratio * n) return res;
+  if (best_count < 3 || best_count < cfg.min_inlier_ratio * n) return;
   res.found = true;
   res.coefficients = best;
   if (cfg.refine) res.coefficients = least_squares_plane(in, best, cfg.distance);
-  res.inliers = select_inliers(in, res.coefficients, cfg.distance);
+  select_inliers(in, res.coefficients, cfg.distance, res.inliers);
   // Orient the normal towards the viewpoint (eq. 4.6) so the sign is reproducible.
   if (res.coefficients.head<3>().dot(in.viewpoint) + res.coefficients[3] < 0.0f)
     res.coefficients = -res.coefficients;
-  return res;
 }
 
 }  // namespace uwgrasp::cloud

@@ -46,6 +46,8 @@ double ransac_iterations(double p, double w, int n = 3);
 // The plane normal points towards the cloud's viewpoint. Degenerate input (fewer than 3 points,
 // all collinear) gives found = false.
 PlaneResult fit_plane(const Cloud& in, const PlaneConfig& cfg, std::uint64_t seed);
+// The same into `res`, reusing its inlier list's capacity.
+void fit_plane(const Cloud& in, const PlaneConfig& cfg, std::uint64_t seed, PlaneResult& res);
 
 // Least-squares plane through the points within tol of `plane` (eigenvector of the smallest
 // covariance eigenvalue); `plane` itself when fewer than three are.

@@ -35,7 +35,10 @@ void check_consistent(const Cloud& cloud, const char* what) {
 template <class T>
 static void gather(const std::vector<T>& in, std::span<const std::uint32_t> idx,
                    std::vector<T>& out) {
-  if (in.empty()) return;
+  if (in.empty()) {
+    out.clear();  // a reused output keeps no field the input lacks
+    return;
+  }
   out.resize(idx.size());
   // In parallel: a frame's 300k points took ~1 ms a field on one thread. Each entry is written
   // once, so the result does not depend on the threads.
@@ -46,6 +49,11 @@ static void gather(const std::vector<T>& in, std::span<const std::uint32_t> idx,
 
 Cloud select(const Cloud& cloud, std::span<const std::uint32_t> indices) {
   Cloud out;
+  select(cloud, indices, out);
+  return out;
+}
+
+void select(const Cloud& cloud, std::span<const std::uint32_t> indices, Cloud& out) {
   gather(cloud.points, indices, out.points);
   gather(cloud.normals, indices, out.normals);
   gather(cloud.curvature, indices, out.curvature);
@@ -54,7 +62,6 @@ Cloud select(const Cloud& cloud, std::span<const std::uint32_t> indices) {
   out.viewpoint = cloud.viewpoint;
   out.orientation = cloud.orientation;
   make_unorganised(out);
-  return out;
 }
 
 Cloud transformed(const Cloud& cloud, const Eigen::Isometry3d& T) {

@@ -45,6 +45,8 @@ void check_consistent(const Cloud& cloud, const char* what);
 
 // Subset in the order of `indices`; the result is unorganised and keeps the viewpoint.
 Cloud select(const Cloud& cloud, std::span<const std::uint32_t> indices);
+// The same into `out` (not `cloud` itself), reusing its buffers' capacity.
+void select(const Cloud& cloud, std::span<const std::uint32_t> indices, Cloud& out);
 
 // The cloud in another frame: T maps this cloud's frame F to the new one (points, normals,
 // viewpoint and orientation move; NaN points stay NaN, so an organised cloud stays organised).

@@ -19,6 +19,12 @@ void StageTimer::start(std::string name) {
   running_ = true;
 }
 
+void StageTimer::clear() {
+  stages_.clear();
+  current_ = 0;
+  running_ = false;
+}
+
 void StageTimer::stop() {
   if (!running_) return;
   stages_[current_].ms += std::chrono::duration<double, std::milli>(Clock::now() - begin_).count();

@@ -18,6 +18,8 @@ class StageTimer {
   void start(std::string name);
   // Ends the running stage.
   void stop();
+  // Forgets every stage, keeping the list's capacity (a timer reused over a stream of frames).
+  void clear();
   const std::vector<StageTime>& stages() const { return stages_; }
   double total_ms() const;
   // Time of a stage by name, 0 if it did not run.

@@ -5,14 +5,22 @@ namespace uwgrasp::segment {
 Scene segment_scene(const Cloud& input, const cloud::PreprocessConfig& pre,
                     const SegmentConfig& seg, std::uint64_t seed) {
   Scene s;
-  s.pre = cloud::preprocess(input, pre, seed, s.timer, seg.region.k);
-  s.timer.start("segment");
-  s.segmentation = s.pre.neighbours.count.empty()
-                       ? grow_regions(s.pre.cloud, seg.region, seg.color)
-                       : grow_regions(s.pre.cloud, seg.region, seg.color, s.pre.neighbours);
-  s.info = describe_segments(s.pre.cloud, s.segmentation, seg.object.color);
-  s.timer.stop();
+  Workspace ws;
+  segment_scene(input, pre, seg, seed, s, ws);
   return s;
+}
+
+void segment_scene(const Cloud& input, const cloud::PreprocessConfig& pre, const SegmentConfig& seg,
+                   std::uint64_t seed, Scene& s, Workspace& ws) {
+  s.timer.clear();
+  cloud::preprocess(input, pre, seed, s.timer, s.pre, ws.cloud, seg.region.k);
+  s.timer.start("segment");
+  if (s.pre.neighbours.count.empty())
+    s.segmentation = grow_regions(s.pre.cloud, seg.region, seg.color);
+  else
+    grow_regions(s.pre.cloud, seg.region, seg.color, s.pre.neighbours, s.segmentation, ws.region);
+  describe_segments(s.pre.cloud, s.segmentation, seg.object.color, s.info);
+  s.timer.stop();
 }
 
 std::vector<std::int32_t> input_labels(const Scene& scene) {

@@ -53,16 +53,18 @@ std::uint32_t ordered_bits(float v) {
 
 // Seed order: points with a finite normal by ascending curvature, ties by index - a stable radix
 // sort on the curvature's ordered bits above the point index.
-std::vector<std::uint32_t> seed_order(const Cloud& c) {
-  std::vector<std::uint64_t> items;
+// Into scratch.order.
+void seed_order(const Cloud& c, RegionScratch& scratch) {
+  std::vector<std::uint64_t>& items = scratch.seeds;
+  items.clear();
   items.reserve(c.size());
   for (std::size_t i = 0; i < c.size(); ++i)
     if (is_finite(c.normals[i]) && std::isfinite(c.curvature[i]))
       items.push_back(std::uint64_t(ordered_bits(c.curvature[i])) << 32 | i);
-  cloud::radix_sort(items, 32, 32);
-  std::vector<std::uint32_t> order(items.size());
-  for (std::size_t j = 0; j < items.size(); ++j) order[j] = static_cast<std::uint32_t>(items[j]);
-  return order;
+  cloud::radix_sort(items, 32, 32, scratch.sort);
+  scratch.order.resize(items.size());
+  for (std::size_t j = 0; j < items.size(); ++j)
+    scratch.order[j] = static_cast<std::uint32_t>(items[j]);
 }
 
 struct Grower {
@@ -72,7 +74,7 @@ struct Grower {
   const ColorConfig& col;
   float cos_angle, dist2, color2;
   std::vector<std::int32_t>& label;
-  std::vector<std::uint32_t> queue;
+  std::vector<std::uint32_t>& queue;
 
   bool joins(std::uint32_t from, std::uint32_t seed, std::uint32_t q, float d2) const {
     if (dist2 > 0.0f && d2 > dist2) return false;
@@ -113,7 +115,58 @@ Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
 Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
                           const ColorConfig& color, const cloud::Neighbours& all) {
   Segmentation out;
-  if (cloud.empty()) return out;
+  RegionScratch scratch;
+  grow_regions(cloud, region, color, all, out, scratch);
+  return out;
+}
+
+namespace {
+// Keeps regions within [min_size, max_size], numbered in order of their first seed; the
+// segments' lists reuse the capacity a previous frame left them.
+void keep_sized(std::size_t points, std::uint32_t n, const RegionConfig& region, Segmentation& out,
+                RegionScratch& scratch) {
+  std::vector<std::uint32_t>& size = scratch.size;
+  size.assign(n, 0);
+  for (auto l : out.label)
+    if (l >= 0) ++size[static_cast<std::size_t>(l)];
+  std::vector<std::int32_t>& renum = scratch.renumber;
+  renum.assign(n, -1);
+  const auto kept = [&](std::uint32_t k) { return k >= region.min_size && k <= region.max_size; };
+  std::size_t m = 0;
+  for (std::uint32_t s = 0; s < n; ++s)
+    if (kept(size[s])) renum[s] = static_cast<std::int32_t>(m++);
+  // Lists beyond this frame's count wait in scratch.spare with their capacity, for a later frame
+  // with more segments.
+  while (out.segments.size() > m) {
+    scratch.spare.push_back(std::move(out.segments.back()));
+    out.segments.pop_back();
+  }
+  while (out.segments.size() < m && !scratch.spare.empty()) {
+    out.segments.push_back(std::move(scratch.spare.back()));
+    scratch.spare.pop_back();
+  }
+  out.segments.resize(m);
+  for (std::uint32_t s = 0; s < n; ++s)
+    if (renum[s] >= 0) {
+      auto& segment = out.segments[static_cast<std::size_t>(renum[s])];
+      segment.clear();
+      segment.reserve(size[s]);  // its size is known: at most one allocation
+    }
+  for (std::size_t i = 0; i < points; ++i) {
+    auto& l = out.label[i];
+    if (l < 0) continue;
+    l = renum[static_cast<std::size_t>(l)];
+    if (l >= 0) out.segments[static_cast<std::size_t>(l)].push_back(static_cast<std::uint32_t>(i));
+  }
+}
+}  // namespace
+
+void grow_regions(const Cloud& cloud, const RegionConfig& region, const ColorConfig& color,
+                  const cloud::Neighbours& all, Segmentation& out, RegionScratch& scratch) {
+  if (cloud.empty()) {
+    out.label.clear(), out.segments.clear();
+    return;
+  }
   check_inputs(cloud, region, color);
   if (all.count.size() != cloud.size() ||
       (!all.window && all.k < region.k && all.k < cloud.size()))
@@ -125,35 +178,24 @@ Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
   const cloud::Neighbours& nb =
       !all.window && all.k > region.k ? (cut = truncate(all, region.k)) : all;
   const float rad = region.angle_deg * std::numbers::pi_v<float> / 180.0f;
-  Grower g{cloud, nb, region, color, std::cos(rad), region.distance * region.distance,
-           color.point_threshold * color.point_threshold, out.label, {}};
+  Grower g{cloud,
+           nb,
+           region,
+           color,
+           std::cos(rad),
+           region.distance * region.distance,
+           color.point_threshold * color.point_threshold,
+           out.label,
+           scratch.queue};
   g.queue.reserve(cloud.size());  // once, not a doubling per region that outgrows the last
   std::int32_t count = 0;
-  for (std::uint32_t s : seed_order(cloud))
+  seed_order(cloud, scratch);
+  for (std::uint32_t s : scratch.order)
     if (out.label[s] == -1) g.grow(s, count++);
 
   std::uint32_t n = static_cast<std::uint32_t>(count);
   if (color.enabled) n = merge_regions(cloud, nb, out.label, n, region, color);
-
-  // Keep regions within [min_size, max_size], numbered in order of their first seed.
-  std::vector<std::uint32_t> size(n, 0);
-  for (auto l : out.label)
-    if (l >= 0) ++size[static_cast<std::size_t>(l)];
-  std::vector<std::int32_t> renum(n, -1);
-  const auto kept = [&](std::uint32_t k) { return k >= region.min_size && k <= region.max_size; };
-  out.segments.reserve(std::size_t(std::count_if(size.begin(), size.end(), kept)));
-  for (std::uint32_t s = 0; s < n; ++s)
-    if (kept(size[s])) {
-      renum[s] = static_cast<std::int32_t>(out.segments.size());
-      out.segments.emplace_back().reserve(size[s]);  // its size is known: one allocation
-    }
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    auto& l = out.label[i];
-    if (l < 0) continue;
-    l = renum[static_cast<std::size_t>(l)];
-    if (l >= 0) out.segments[static_cast<std::size_t>(l)].push_back(static_cast<std::uint32_t>(i));
-  }
-  return out;
+  keep_sized(cloud.size(), n, region, out, scratch);
 }
 
 }  // namespace uwgrasp::segment

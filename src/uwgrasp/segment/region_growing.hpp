@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/cloud/radix_sort.hpp"
 #include "uwgrasp/core/cloud.hpp"
 
 namespace uwgrasp::segment {
@@ -42,5 +43,18 @@ Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
 // The same with neighbour lists already computed for this cloud (nb.k >= region.k).
 Segmentation grow_regions(const Cloud& cloud, const RegionConfig& region,
                           const ColorConfig& color, const cloud::Neighbours& nb);
+
+// Its buffers, for a caller that segments a stream of frames (segment::Workspace).
+struct RegionScratch {
+  std::vector<std::uint64_t> seeds;  // the seed order's sort items
+  std::vector<std::uint32_t> order, queue, size;
+  std::vector<std::int32_t> renumber;
+  cloud::RadixScratch sort;
+  std::vector<std::vector<std::uint32_t>> spare;  // segment lists a frame with fewer left over
+};
+// The same into `out` (its lists' capacities reused, the segments' own too): without colour,
+// a stream of frames asks the allocator for nothing once the buffers have grown to them.
+void grow_regions(const Cloud& cloud, const RegionConfig& region, const ColorConfig& color,
+                  const cloud::Neighbours& nb, Segmentation& out, RegionScratch& scratch);
 
 }  // namespace uwgrasp::segment

@@ -40,8 +40,15 @@ float color_intensity(Rgb8 c, const std::string& color) {
 
 std::vector<SegmentInfo> describe_segments(const Cloud& cloud, const Segmentation& seg,
                                            const std::string& color) {
+  std::vector<SegmentInfo> info;
+  describe_segments(cloud, seg, color, info);
+  return info;
+}
+
+void describe_segments(const Cloud& cloud, const Segmentation& seg, const std::string& color,
+                       std::vector<SegmentInfo>& info) {
   named(color);  // validate the name even for colourless clouds
-  std::vector<SegmentInfo> info(seg.segments.size());
+  info.assign(seg.segments.size(), SegmentInfo{});
   for (std::size_t s = 0; s < seg.segments.size(); ++s) {
     const auto& idx = seg.segments[s];
     SegmentInfo& si = info[s];
@@ -66,7 +73,6 @@ std::vector<SegmentInfo> describe_segments(const Cloud& cloud, const Segmentatio
     si.distance = (si.centroid - cloud.viewpoint).norm();
     si.extent = extent_of(cloud, idx);
   }
-  return info;
 }
 
 float extent_of(const Cloud& cloud, std::span<const std::uint32_t> idx) {

@@ -56,6 +56,9 @@ float color_intensity(Rgb8 c, const std::string& color);
 
 std::vector<SegmentInfo> describe_segments(const Cloud& cloud, const Segmentation& seg,
                                            const std::string& color);
+// The same into `info` (its capacity reused).
+void describe_segments(const Cloud& cloud, const Segmentation& seg, const std::string& color,
+                       std::vector<SegmentInfo>& info);
 
 // The diagonal of the box of cloud's points idx, m (0 for none). Nearest, largest and point
 // have nothing but geometry to tell an object from a fragment: near the lens a particle of
