@@ -45,8 +45,8 @@ void surely_full(const PixelMap& map, std::span<const float> range, std::size_t 
   // whose column a point within h rows has (a frame's objects, once the plane stage took the
   // table, fill a fraction of it: the whole rows took a fifth of the stage on mOSD_learn0).
   // A pixel out of play is +inf to the min and -inf to the max.
-  std::vector<std::size_t>&first = scratch.first,
-  &last = scratch.last;  // each row's in-play columns
+  std::vector<std::size_t>& first = scratch.first;  // each row's in-play columns
+  std::vector<std::size_t>& last = scratch.last;
   first.assign(H, W), last.assign(H, 0);
   for (const std::uint32_t p : map.pixel) {
     first[p / W] = std::min<std::size_t>(first[p / W], p % W);
