@@ -58,6 +58,7 @@ void simulate_bag(const Simulation& s, const io::Config& cfg, const BagOptions& 
 
 int detect_bag(const BagOptions& o, const io::Config& cfg, const std::string& jsonl) {
   const uwgrasp_ros::Engine engine = uwgrasp_ros::make_engine(cfg);
+  uwgrasp_ros::Stream stream;  // the frames' buffers, reused
   std::string lines;
   std::vector<double> ms;
   std::size_t n = 0, with_grasps = 0, bad = 0;
@@ -71,7 +72,7 @@ int detect_bag(const BagOptions& o, const io::Config& cfg, const std::string& js
     }
     uwgrasp_ros::PlainDetection d;
     try {
-      d = engine.detect(b.cloud, b.capture, b.frame_id, UWGRASP_VERSION);
+      d = engine.detect(b.cloud, b.capture, b.frame_id, UWGRASP_VERSION, stream);
     } catch (const Error& e) {
       ++bad;
       std::printf("frame %zu at %.3f: skipped: %s\n", n, b.stamp, e.what());

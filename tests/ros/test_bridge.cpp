@@ -76,6 +76,41 @@ TEST(RosBridge, EngineGivesWhatTheDetectorGives) {
   EXPECT_NE(got.json.find("\"grasps\""), std::string::npos);
 }
 
+// A node's Stream (the frames' buffers, reused) over clouds of different sizes and a bad one:
+// each frame's detection is the one a fresh call gives.
+TEST(RosBridge, EngineThroughAStreamGivesWhatItGivesAlone) {
+  const auto near = uwgrasp::fixtures::render_object(uwgrasp::fixtures::Object::barbell, {}, 4000);
+  const auto far =
+      uwgrasp::fixtures::render_object(uwgrasp::fixtures::Object::barbell, {0.9, 1.0, 0.8}, 2500);
+  uwgrasp::io::Config cfg;
+  cfg.grasp.frames.camera.rpy = {0, near.camera_pitch, 0};
+  const Engine engine = make_engine(cfg);
+  PlainCloud bad;
+  bad.width = 1;
+  bad.xyz = {std::nanf(""), 0, 1};
+  const PlainCloud a = plain_cloud(near.cloud), b = plain_cloud(far.cloud);
+  Stream stream;
+  for (const PlainCloud* c : std::vector<const PlainCloud*>{&a, &b, &bad, &a}) {
+    if (c == &bad) {
+      EXPECT_THROW(engine.detect(bad, {}, "x", "t", stream), uwgrasp::Error);
+      continue;
+    }
+    const PlainDetection got = engine.detect(*c, {}, "barbell", "test", stream);
+    const PlainDetection want = engine.detect(*c, {}, "barbell", "test");
+    ASSERT_TRUE(got.warning.empty()) << (c == &a ? "near: " : "far: ") << got.warning;
+    ASSERT_FALSE(got.grasps.empty());
+    EXPECT_EQ(got.object_xyz, want.object_xyz);
+    EXPECT_EQ(got.candidates, want.candidates);
+    EXPECT_EQ(got.feasible, want.feasible);
+    ASSERT_EQ(got.grasps.size(), want.grasps.size());
+    for (std::size_t i = 0; i < got.grasps.size(); ++i) {
+      EXPECT_EQ(got.grasps[i].pose.p, want.grasps[i].pose.p);
+      EXPECT_EQ(got.grasps[i].pose.q, want.grasps[i].pose.q);
+      EXPECT_EQ(got.grasps[i].score, want.grasps[i].score);
+    }
+  }
+}
+
 TEST(RosBridge, CloudsThatCannotBeInACameraFrameAreErrors) {
   const Engine engine("", {});
   PlainCloud behind;

@@ -36,24 +36,24 @@ PlainCloud plain_cloud(const uwgrasp::Cloud& c) {
 namespace {
 std::array<double, 3> arr(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-uwgrasp::Cloud to_cloud(const PlainCloud& in) {
-  uwgrasp::Cloud c;
+// Into `c`, reusing its buffers.
+void to_cloud(const PlainCloud& in, uwgrasp::Cloud& c) {
   const std::size_t n = in.size();
   c.points.resize(n);
   for (std::size_t i = 0; i < n; ++i) c.points[i] = {in.xyz[3 * i], in.xyz[3 * i + 1], in.xyz[3 * i + 2]};
-  if (in.rgb.size() == 3 * n) {
-    c.colors.resize(n);
-    for (std::size_t i = 0; i < n; ++i) c.colors[i] = {in.rgb[3 * i], in.rgb[3 * i + 1], in.rgb[3 * i + 2]};
-  }
+  c.colors.resize(in.rgb.size() == 3 * n ? n : 0);
+  for (std::size_t i = 0; i < c.colors.size(); ++i)
+    c.colors[i] = {in.rgb[3 * i], in.rgb[3 * i + 1], in.rgb[3 * i + 2]};
+  c.normals.clear(), c.curvature.clear(), c.labels.clear();
   c.width = in.height > 1 ? in.width : static_cast<std::uint32_t>(n);
   c.height = in.height > 1 ? in.height : 1;
   uwgrasp::check_consistent(c, "PointCloud2");
   const uwgrasp::BehindCount behind = uwgrasp::behind_camera(c);
   if (behind.finite == 0) throw Error("PointCloud2: no finite point (" + std::to_string(n) + " points, all NaN or inf)");
   if (behind.share() >= 0.01)
-    throw Error("1 % or more of the points lie behind the camera: the cloud's frame is not a camera optical "
-                "frame (z forward); publish the cloud in the camera's frame");
-  return c;
+    throw Error(
+        "1 % or more of the points lie behind the camera: the cloud's frame is not a camera "
+        "optical frame (z forward); publish the cloud in the camera's frame");
 }
 
 PlainGrasp plain(const uwgrasp::grasp::Grasp& g, const uwgrasp::grasp::Frames& f, const uwgrasp::grasp::Gripper& model) {
@@ -107,6 +107,16 @@ struct Engine::Impl {
   uwgrasp::io::Config config;
 };
 
+struct Stream::Impl {
+  uwgrasp::Cloud cloud;
+  uwgrasp::grasp::Detection detection;
+  uwgrasp::segment::Workspace workspace;
+};
+Stream::Stream() : impl_(std::make_unique<Impl>()) {}
+Stream::~Stream() = default;
+Stream::Stream(Stream&&) noexcept = default;
+Stream& Stream::operator=(Stream&&) noexcept = default;
+
 Engine::Engine(const std::string& path, const std::vector<std::string>& sets) : impl_(std::make_unique<Impl>()) {
   if (path.empty()) uwgrasp::io::apply_overrides(impl_->config, sets);
   else impl_->config = uwgrasp::io::load_config(path, sets);
@@ -134,7 +144,15 @@ std::uint32_t Engine::threads() const { return impl_->config.threads; }
 
 PlainDetection Engine::detect(const PlainCloud& in, const Capture& capture, const std::string& input,
                               const std::string& version) const {
-  const uwgrasp::Cloud cloud = to_cloud(in);
+  Stream fresh;
+  return detect(in, capture, input, version, fresh);
+}
+
+PlainDetection Engine::detect(const PlainCloud& in, const Capture& capture,
+                              const std::string& input, const std::string& version,
+                              Stream& stream) const {
+  uwgrasp::Cloud& cloud = stream.impl_->cloud;
+  to_cloud(in, cloud);
   uwgrasp::io::Config cfg = impl_->config;
   if (capture.ros_body_from_camera) {
     const MountRpy m = mount_from(*capture.ros_body_from_camera);
@@ -145,9 +163,10 @@ PlainDetection Engine::detect(const PlainCloud& in, const Capture& capture, cons
     cfg.grasp.frames.capture_roll = (*capture.roll_pitch)[0], cfg.grasp.frames.capture_pitch = (*capture.roll_pitch)[1];
   PlainDetection out;
   out.points_in = cloud.size();
-  uwgrasp::grasp::Detection d;
+  uwgrasp::grasp::Detection& d = stream.impl_->detection;
   try {
-    d = uwgrasp::grasp::detect(cloud, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed);
+    uwgrasp::grasp::detect(cloud, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed, d,
+                           stream.impl_->workspace);
   } catch (const Error& e) {
     out.warning = e.what();
     return out;

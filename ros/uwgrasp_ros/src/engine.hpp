@@ -85,6 +85,23 @@ struct PlainDetection {
   std::string json;                       // grasps.json (INTERFACE.md), compact, one line
 };
 
+// A stream's buffers, kept from frame to frame by a node or a bag reader: the cloud, the
+// segments' workspace and the detection, so that a frame reuses the memory of the frames before
+// it (grasp::detect's stream form). Opaque here: its contents are uwgrasp's C++20 types. One
+// detection at a time may use a Stream.
+class Stream {
+ public:
+  Stream();
+  ~Stream();
+  Stream(Stream&&) noexcept;
+  Stream& operator=(Stream&&) noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  friend class Engine;
+};
+
 // The engine with its config: the same YAML as the CLI, then "a.b.c=value" overrides.
 class Engine {
  public:
@@ -102,6 +119,9 @@ class Engine {
   // in the JSON.
   PlainDetection detect(const PlainCloud& cloud, const Capture& capture, const std::string& input,
                         const std::string& version) const;
+  // The same through a stream's buffers; the same result.
+  PlainDetection detect(const PlainCloud& cloud, const Capture& capture, const std::string& input,
+                        const std::string& version, Stream& stream) const;
 
  private:
   struct Impl;

@@ -47,7 +47,7 @@ bool Node::process(const Pending& p, std::string& why) {
       std::lock_guard<std::mutex> lock(mutex_);
       return engine_;
     }();
-    d = engine.detect(cloud, frames.capture, h.frame_id, UWGRASP_VERSION);
+    d = engine.detect(cloud, frames.capture, h.frame_id, UWGRASP_VERSION, stream_);
   } catch (const tf2::TransformException& e) {
     why = std::string("tf: ") + e.what();
   } catch (const std::exception& e) {

@@ -111,16 +111,19 @@ Surroundings surroundings(const segment::Scene& scene, std::vector<Eigen::Vector
   return {points, scene.pre.plane.found, scene.pre.plane.coefficients};
 }
 
-Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
-                 const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed) {
-  Detection d;
-  d.scene = segment::segment_scene(input, pre, seg, seed);
+void detect(const Cloud& input, const cloud::PreprocessConfig& pre,
+            const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed,
+            Detection& d, segment::Workspace& ws) {
+  d.restored_colours = false;  // whole_object sets it; the other selections leave it
+  d.segment = 0;
+  d.result = ObjectGrasps{};
+  segment::segment_scene(input, pre, seg, seed, d.scene, ws);
   d.timer = d.scene.timer;
   d.timer.start("select");
   const bool fallback = pre.water.fallback && !pre.water.enabled;
   const std::vector<std::uint32_t> object = object_indices(
       d.scene, seg.object, d.segment, fallback ? &pre.water : nullptr, &d.restored_colours);
-  d.object = select(d.scene.pre.cloud, object);
+  select(d.scene.pre.cloud, object, d.object);
   d.timer.stop();
   const double leaf = pre.voxel.enabled ? pre.voxel.leaf : 0.0;
   Surroundings around = surroundings(d.scene, d.obstacles, &input);
@@ -131,6 +134,13 @@ Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   for (const std::uint32_t i : object) d.rests[i] = 0;
   around.rests = d.rests;
   d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);
+}
+
+Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
+                 const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed) {
+  Detection d;
+  segment::Workspace ws;
+  detect(input, pre, seg, cfg, seed, d, ws);
   return d;
 }
 

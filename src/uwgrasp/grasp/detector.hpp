@@ -80,6 +80,14 @@ Surroundings surroundings(const segment::Scene& scene, std::vector<Eigen::Vector
 Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
                  const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed);
 
+// The same detection for a stream of frames (a node, a bag): `d` and `ws` are kept from frame
+// to frame, so the segments reuse their buffers (segment_scene's stream form) and the
+// detection's own lists keep their capacity. Same result as the call above. After a throw, `d`
+// holds no result.
+void detect(const Cloud& input, const cloud::PreprocessConfig& pre,
+            const segment::SegmentConfig& seg, const GraspConfig& cfg, std::uint64_t seed,
+            Detection& d, segment::Workspace& ws);
+
 // T_CG of a grasp: the camera frame pose reported to users.
 Pose camera_from_gripper(const Grasp& g, const Frames& f);
 
