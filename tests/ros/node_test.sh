@@ -62,7 +62,10 @@ for _ in $(seq 100); do rostopic info /camera/depth/points 2>/dev/null | grep -q
 "$PROBE" listen "$T/got.jsonl" "$FRAMES" 300 &
 PROBE_PID=$!
 sleep 1
-rosbag play -q -d 2 -r 0.5 "$T/scene.bag" --topics /camera/depth/points /tf /tf_static /imu/data >/dev/null 2>&1 ||
+# -d: rosbag's publisher waits before the first message while the node's and the probe's
+# subscriptions connect to it; a message sent before a subscriber connects is lost by the transport
+# (neither processed nor dropped by the node). 2 s was once too short on a loaded 2-core machine.
+rosbag play -q -d 5 -r 0.5 "$T/scene.bag" --topics /camera/depth/points /tf /tf_static /imu/data >/dev/null 2>&1 ||
   bad "rosbag play"
 wait $PROBE_PID
 "$PROBE" bad "$T/scene.bag" "$T/bad.jsonl" 30 || bad "probe bad: exit $?"
