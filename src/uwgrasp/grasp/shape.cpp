@@ -201,28 +201,39 @@ template <class Part, class Outside>
 void shell(Grid g, Part part, Outside outside, bool mirrored_surface, std::vector<V3>& points,
            std::vector<V3>& normals) {
   const ObjectShape& s = g.s;
-  // Slabs of constant k in parallel, each into its own lists, joined in k order: the same
-  // points in the same order as one sweep.
-  std::vector<std::vector<V3>> slab_points(std::size_t(s.nz)), slab_normals(std::size_t(s.nz));
-  tbb::parallel_for(0, s.nz, [&](int k) {
-    for (int j = 0; j < s.ny; ++j)
-      for (int i = 0; i < s.nx; ++i) {
-        if (i + 8 <= s.nx && free_run(s.cells.data() + g.index(i, j, k))) {
-          i += 7;
-          continue;
+  // Runs of kSlabs slabs of constant k in parallel, each into its own lists, joined in k order:
+  // the same points in the same order as one sweep (a list per slab: ~3,000 allocator calls).
+  constexpr int kSlabs = 4;
+  const int runs = (s.nz + kSlabs - 1) / kSlabs;
+  std::vector<std::vector<V3>> run_points(static_cast<std::size_t>(runs)),
+      run_normals(static_cast<std::size_t>(runs));
+  tbb::parallel_for(0, runs, [&](int r) {
+    std::vector<V3>& out_p = run_points[std::size_t(r)];
+    std::vector<V3>& out_n = run_normals[std::size_t(r)];
+    for (int k = r * kSlabs; k < std::min(s.nz, (r + 1) * kSlabs); ++k)
+      for (int j = 0; j < s.ny; ++j)
+        for (int i = 0; i < s.nx; ++i) {
+          if (i + 8 <= s.nx && free_run(s.cells.data() + g.index(i, j, k))) {
+            i += 7;
+            continue;
+          }
+          const Occupancy o = s.cells[g.index(i, j, k)];
+          if (o == Occupancy::free || o == Occupancy::seen || o == Occupancy::mirrored || !part(o))
+            continue;
+          if (!on_boundary(g, i, j, k, outside) || (mirrored_surface && by_mirrored(g, i, j, k)))
+            continue;
+          const V3 n = away_from_mass(g, i, j, k, outside);
+          if (n.norm() < 1e-3f) continue;  // no side faces away from the mass: not a surface
+          out_p.push_back(g.centre(i, j, k));
+          out_n.push_back(n.normalized());
         }
-        const Occupancy o = s.cells[g.index(i, j, k)];
-        if (o == Occupancy::free || o == Occupancy::seen || o == Occupancy::mirrored || !part(o)) continue;
-        if (!on_boundary(g, i, j, k, outside) || (mirrored_surface && by_mirrored(g, i, j, k))) continue;
-        const V3 n = away_from_mass(g, i, j, k, outside);
-        if (n.norm() < 1e-3f) continue;  // no side faces away from the mass: not a surface
-        slab_points[std::size_t(k)].push_back(g.centre(i, j, k));
-        slab_normals[std::size_t(k)].push_back(n.normalized());
-      }
   });
-  for (std::size_t k = 0; k < slab_points.size(); ++k) {
-    points.insert(points.end(), slab_points[k].begin(), slab_points[k].end());
-    normals.insert(normals.end(), slab_normals[k].begin(), slab_normals[k].end());
+  std::size_t total = points.size();
+  for (const auto& run : run_points) total += run.size();
+  points.reserve(total), normals.reserve(total);
+  for (std::size_t r = 0; r < run_points.size(); ++r) {
+    points.insert(points.end(), run_points[r].begin(), run_points[r].end());
+    normals.insert(normals.end(), run_normals[r].begin(), run_normals[r].end());
   }
 }
 }  // namespace
@@ -278,8 +289,9 @@ float surface_noise(std::span<const Eigen::Vector3f> points, std::size_t k, std:
   const cloud::KdTree& tree = shared ? *shared : own.emplace(points);
   const std::size_t step = std::max<std::size_t>(1, points.size() / samples);
   std::vector<float> rms((points.size() + step - 1) / step);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rms.size()), [&](const auto& r) {
-    std::vector<std::uint32_t> idx(k);  // a range's, not a sample's
+  // Ranges of at least 64 samples: the lists are a range's, not a sample's.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rms.size(), 64), [&](const auto& r) {
+    std::vector<std::uint32_t> idx(k);
     std::vector<float> d2(k);
     for (std::size_t s = r.begin(); s != r.end(); ++s) {
       const std::size_t n = tree.knn(points[s * step], k, idx.data(), d2.data());

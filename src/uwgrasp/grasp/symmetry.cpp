@@ -218,7 +218,11 @@ void mirror_points(std::span<const Eigen::Vector3f> level, std::span<const Eigen
   constexpr std::size_t kBlock = 2048;
   const std::size_t blocks = (level.size() + kBlock - 1) / kBlock;
   std::vector<std::vector<V3>> block_points(blocks), block_normals(blocks);
+  const std::size_t per_point = planes.size() * (planes.size() + 1) / 2;  // single and pairs
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t k) {
+    // At most per_point a point: one allocation a list, not one per doubling.
+    const std::size_t most = (std::min(level.size(), (k + 1) * kBlock) - k * kBlock) * per_point;
+    block_points[k].reserve(most), block_normals[k].reserve(most);
     const auto keep = [&](const V3& p, const V3& n) {
       if (classify(view, p, tolerance) == Seen::hidden)
         block_points[k].push_back(p), block_normals[k].push_back(n);
@@ -233,6 +237,9 @@ void mirror_points(std::span<const Eigen::Vector3f> level, std::span<const Eigen
       }
     }
   });
+  std::size_t total = points.size();
+  for (const auto& block : block_points) total += block.size();
+  points.reserve(total), out_normals.reserve(total);
   for (std::size_t k = 0; k < blocks; ++k) {
     points.insert(points.end(), block_points[k].begin(), block_points[k].end());
     out_normals.insert(out_normals.end(), block_normals[k].begin(), block_normals[k].end());
