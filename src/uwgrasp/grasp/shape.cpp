@@ -1,9 +1,7 @@
 #include "uwgrasp/grasp/shape.hpp"
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -13,9 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "uwgrasp/cloud/kdtree.hpp"
-#include "uwgrasp/core/cloud.hpp"
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/grasp/join.hpp"
 #include "uwgrasp/grasp/occlusion.hpp"
 
 namespace uwgrasp::grasp {
@@ -228,13 +225,8 @@ void shell(Grid g, Part part, Outside outside, bool mirrored_surface, std::vecto
           out_n.push_back(n.normalized());
         }
   });
-  std::size_t total = points.size();
-  for (const auto& run : run_points) total += run.size();
-  points.reserve(total), normals.reserve(total);
-  for (std::size_t r = 0; r < run_points.size(); ++r) {
-    points.insert(points.end(), run_points[r].begin(), run_points[r].end());
-    normals.insert(normals.end(), run_normals[r].begin(), run_normals[r].end());
-  }
+  join_in_order(run_points, points);
+  join_in_order(run_normals, normals);
 }
 }  // namespace
 
@@ -280,28 +272,6 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
   };
   shell(Grid{s}, is_thin, beyond_core, false, s.core_points, s.core_normals);
   return s;
-}
-
-float surface_noise(std::span<const Eigen::Vector3f> points, std::size_t k, std::size_t samples,
-                    const cloud::KdTree* shared) {
-  if (points.size() <= k) return 0.0f;
-  std::optional<cloud::KdTree> own;
-  const cloud::KdTree& tree = shared ? *shared : own.emplace(points);
-  const std::size_t step = std::max<std::size_t>(1, points.size() / samples);
-  std::vector<float> rms((points.size() + step - 1) / step);
-  // Ranges of at least 64 samples: the lists are a range's, not a sample's.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rms.size(), 64), [&](const auto& r) {
-    std::vector<std::uint32_t> idx(k);
-    std::vector<float> d2(k);
-    for (std::size_t s = r.begin(); s != r.end(); ++s) {
-      const std::size_t n = tree.knn(points[s * step], k, idx.data(), d2.data());
-      const MeanCovariance mc = mean_covariance(points, std::span(idx).first(n));
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(mc.cov, Eigen::EigenvaluesOnly);
-      rms[s] = float(std::sqrt(std::max(0.0, es.eigenvalues()[0])));
-    }
-  });
-  std::nth_element(rms.begin(), rms.begin() + std::ptrdiff_t(rms.size() / 2), rms.end());
-  return rms[rms.size() / 2];
 }
 
 }  // namespace uwgrasp::grasp

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "uwgrasp/cloud/kdtree.hpp"
+#include "uwgrasp/grasp/join.hpp"
 #include "uwgrasp/grasp/symmetry_search.hpp"
 
 namespace uwgrasp::grasp {
@@ -237,13 +238,8 @@ void mirror_points(std::span<const Eigen::Vector3f> level, std::span<const Eigen
       }
     }
   });
-  std::size_t total = points.size();
-  for (const auto& block : block_points) total += block.size();
-  points.reserve(total), out_normals.reserve(total);
-  for (std::size_t k = 0; k < blocks; ++k) {
-    points.insert(points.end(), block_points[k].begin(), block_points[k].end());
-    out_normals.insert(out_normals.end(), block_normals[k].begin(), block_normals[k].end());
-  }
+  join_in_order(block_points, points);
+  join_in_order(block_normals, out_normals);
 }
 
 }  // namespace uwgrasp::grasp
