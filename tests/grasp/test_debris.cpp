@@ -3,6 +3,7 @@
 // rule is checked against brute force: points nearer than the gap always share a verdict.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "uwgrasp/core/error.hpp"
@@ -66,6 +67,53 @@ TEST(Debris, PointsNearerThanTheGapShareTheirVerdict) {
   EXPECT_GT(pairs, 1000u);
   EXPECT_GT(flagged, 0u);  // the random blobs hold both kinds
   EXPECT_LT(flagged, p.size());
+}
+
+// The documented rule by brute force, pair by pair: points whose gap-grid cells are the same or
+// adjacent (on every axis within one) join; a cluster is debris when its box's diagonal is at
+// most `size` and no point lies within `gap` of the floor. Over a thousand cells, on both sides of
+// every axis, so that the cell numbering grows many times over.
+TEST(Debris, EqualsTheRuleByBruteForce) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> u(-0.4f, 0.4f), h(-0.05f, 0.4f), radius(0.002f, 0.02f);
+  std::vector<V3> p;
+  for (int k = 0; k < 150; ++k) blob(p, V3(u(rng), u(rng), h(rng)), radius(rng), 16, rng);
+  const float gap = 0.01f, size = 0.03f;
+  std::vector<Eigen::Vector3i> cell;
+  for (const V3& q : p) cell.push_back((q / gap).array().floor().cast<int>());
+  std::vector<std::size_t> root(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) root[i] = i;
+  const auto find = [&](std::size_t a) {
+    while (root[a] != a) a = root[a];
+    return a;
+  };
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j)
+      if ((cell[i] - cell[j]).cwiseAbs().maxCoeff() <= 1) root[find(j)] = find(i);
+  std::vector<V3> lo(p.size(), V3::Constant(1e9f)), hi(p.size(), V3::Constant(-1e9f));
+  std::vector<char> rests(p.size(), 0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::size_t r = find(i);
+    lo[r] = lo[r].cwiseMin(p[i]), hi[r] = hi[r].cwiseMax(p[i]);
+    if (std::abs(p[i].z()) <= gap) rests[r] = 1;
+  }
+  std::vector<Eigen::Vector3i> distinct = cell;
+  const auto before = [](const Eigen::Vector3i& x, const Eigen::Vector3i& y) {
+    return std::lexicographical_compare(x.data(), x.data() + 3, y.data(), y.data() + 3);
+  };
+  std::sort(distinct.begin(), distinct.end(), before);
+  EXPECT_GT(std::unique(distinct.begin(), distinct.end()) - distinct.begin(),
+            1000);  // many growths
+  const std::vector<char> d = debris(p, kFloor, gap, size);
+  std::size_t flagged = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::size_t r = find(i);
+    const char expected = !rests[r] && (hi[r] - lo[r]).norm() <= size;
+    ASSERT_EQ(d[i], expected) << "point " << i;
+    flagged += std::size_t(expected);
+  }
+  EXPECT_GT(flagged, p.size() / 10);  // both kinds, many of each
+  EXPECT_LT(flagged, p.size() - p.size() / 10);
 }
 
 TEST(Debris, TheVehicleIsNotBlockedByAParticle) {
