@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <tuple>
 
 #include "convert.hpp"
 #include "messages.hpp"
@@ -36,6 +37,34 @@ TEST(RosMessages, CloudsSurviveTheRoundTrip) {
       else EXPECT_EQ(back.xyz[i], c.xyz[i]);
     EXPECT_EQ(back.rgb, c.rgb);
   }
+}
+
+// One PlainCloud read into over messages of other sizes, with and without colours (as the node
+// does): each read gives exactly what a fresh read gives, and a malformed message leaves it as it
+// was.
+TEST(RosMessages, ReadingIntoOneCloudGivesWhatAFreshReadGives) {
+  PlainCloud reused;
+  for (const auto& [w, h, colours] :
+       {std::tuple{8u, 5u, true}, std::tuple{3u, 2u, false}, std::tuple{16u, 9u, false},
+        std::tuple{4u, 1u, true}, std::tuple{6u, 6u, true}}) {
+    const sensor_msgs::PointCloud2 m = to_msg(grid(w, h, colours));
+    from_msg(m, reused);
+    const PlainCloud fresh = from_msg(m);
+    EXPECT_EQ(reused.width, fresh.width);
+    EXPECT_EQ(reused.height, fresh.height);
+    ASSERT_EQ(reused.xyz.size(), fresh.xyz.size()) << w << " x " << h;
+    EXPECT_EQ(std::memcmp(reused.xyz.data(), fresh.xyz.data(), 4 * fresh.xyz.size()),
+              0);  // NaN too
+    EXPECT_EQ(reused.rgb, fresh.rgb);
+    EXPECT_EQ(reused.rgb.empty(), !colours);
+  }
+  sensor_msgs::PointCloud2 bad = to_msg(grid(2, 2, false));
+  bad.fields.erase(bad.fields.begin());
+  const PlainCloud before = reused;
+  EXPECT_THROW(from_msg(bad, reused), uwgrasp::Error);
+  EXPECT_EQ(reused.width, before.width);
+  EXPECT_EQ(reused.rgb, before.rgb);
+  EXPECT_EQ(std::memcmp(reused.xyz.data(), before.xyz.data(), 4 * before.xyz.size()), 0);
 }
 
 // FLOAT64 coordinates, padding in each point and at the end of each row: what other drivers send.

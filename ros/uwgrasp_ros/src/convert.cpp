@@ -69,6 +69,12 @@ void check_layout(const sensor_msgs::PointCloud2& m) {
 }  // namespace
 
 PlainCloud from_msg(const sensor_msgs::PointCloud2& m) {
+  PlainCloud c;
+  from_msg(m, c);
+  return c;
+}
+
+void from_msg(const sensor_msgs::PointCloud2& m, PlainCloud& c) {
   check_layout(m);
   Field xyz[3];
   const char* names[3] = {"x", "y", "z"};
@@ -81,12 +87,11 @@ PlainCloud from_msg(const sensor_msgs::PointCloud2& m) {
   Field rgb = find_field(m, "rgb");
   if (!rgb.found) rgb = find_field(m, "rgba");
   if (rgb.found && type_size(rgb.type) != 4) throw Error("PointCloud2: field 'rgb' is not 4 bytes");
-  PlainCloud c;
   c.width = m.width;
   c.height = m.height;
   const std::size_t n = std::size_t(m.width) * m.height;
   c.xyz.resize(3 * n);
-  if (rgb.found) c.rgb.resize(3 * n);
+  c.rgb.resize(rgb.found ? 3 * n : 0);
   for (std::uint32_t r = 0; r < m.height; ++r) {
     const std::uint8_t* row = m.data.data() + std::size_t(r) * m.row_step;
     for (std::uint32_t col = 0; col < m.width; ++col) {
@@ -101,7 +106,6 @@ PlainCloud from_msg(const sensor_msgs::PointCloud2& m) {
       }
     }
   }
-  return c;
 }
 
 sensor_msgs::PointCloud2 to_msg(const PlainCloud& c) {

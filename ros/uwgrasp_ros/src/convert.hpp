@@ -14,6 +14,9 @@ namespace uwgrasp_ros {
 // data, row_step < width * point_step, data shorter than row_step * height. Organised messages
 // stay organised.
 PlainCloud from_msg(const sensor_msgs::PointCloud2& msg);
+// The same into `out`, reusing its buffers (a node's stream of frames); on a throw `out` is
+// unchanged.
+void from_msg(const sensor_msgs::PointCloud2& msg, PlainCloud& out);
 
 // x, y, z FLOAT32 and rgb (FLOAT32-packed, as PCL writes it) when the cloud has colours.
 sensor_msgs::PointCloud2 to_msg(const PlainCloud& cloud);
