@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -85,6 +86,43 @@ TEST(ShapeWalk, ExtentAlongIsTheWalkThatLooksUpEveryPoint) {
   // The walks cover the cases: through solid past the limit, and stopped by a gap before it.
   EXPECT_GT(reaching, walks / 50);
   EXPECT_GT(stopped_early, walks / 10);
+}
+
+// The palm back-off's line scan, four points a go, against the scan that looks up one point at a
+// time from the far end: the same step on every line, through balls, specks and the grid's edges,
+// with ranges that start or end outside the grid and ranges shorter than four.
+TEST(ShapeWalk, LastOccupiedIsTheScanOfOnePointAtATime) {
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), sym(-1.0f, 1.0f);
+  std::uniform_int_distribution<int> bound(-20, 140);
+  std::size_t lines = 0, hits = 0;
+  for (int g = 0; g < 40; ++g) {
+    const ObjectShape s = balls(rng, 0.002f + 0.004f * unit(rng));
+    const V3 size = s.voxel * V3(float(s.nx), float(s.ny), float(s.nz));
+    for (int l = 0; l < 200; ++l, ++lines) {
+      const V3 base = s.origin + size.cwiseProduct(V3(unit(rng), unit(rng), unit(rng)) * 1.4f -
+                                                   V3::Constant(0.2f));
+      const V3 u = V3(sym(rng), sym(rng), sym(rng)).normalized();
+      const float step = 0.5f * s.voxel;
+      int first = bound(rng), last = bound(rng);
+      if (first > last) std::swap(first, last);
+      int expected = first - 1;
+      for (int i = last; i >= first; --i)
+        if (s.occupied(base - float(i) * step * u)) {
+          expected = i;
+          break;
+        }
+      ASSERT_EQ(last_occupied(s, base, u, step, first, last), expected)
+          << "grid " << g << " line " << l;
+      hits += expected >= first;
+    }
+  }
+  EXPECT_GT(hits, lines / 10);  // both answers, many times (1,067 hits of 8,000)
+  EXPECT_LT(hits, lines - lines / 10);
+  const ObjectShape none;
+  EXPECT_EQ(last_occupied(none, V3::Zero(), V3::UnitX(), 0.001f, 3, 9), 2);
+  EXPECT_EQ(last_occupied(balls(rng, 0.003f), V3::Zero(), V3::UnitX(), 0.001f, 5, 4),
+            4);  // empty range
 }
 
 TEST(ShapeWalk, ExtentAlongOnDegenerateInput) {

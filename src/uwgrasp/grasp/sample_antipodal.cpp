@@ -76,11 +76,8 @@ float back_off(const ObjectShape& shape, const V3& centre, const V3& x, const V3
     for (const float b : {0.0f, -1.0f, 1.0f}) {
       const V3 base = centre + a * half_width * y + b * half_height * z;
       const StepRange r = steps_in_grid(slabs, base, d, reach + 1, steps);
-      for (int i = r.last; i >= r.first; --i)
-        if (shape.occupied(base - float(i) * step * x)) {
-          reach = i;
-          break;
-        }
+      const int hit = last_occupied(shape, base, x, step, r.first, r.last);
+      if (hit >= r.first) reach = hit;
     }
   if (reach < 0) return 0.0f;
   return std::max(0.0f, float(reach) * step + 1.5f * shape.voxel - palm_offset);

@@ -126,6 +126,11 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
 float extent_along(const ObjectShape& shape, const Eigen::Vector3f& p, const Eigen::Vector3f& u,
                    float limit, float gap);
 
+// The largest i in [first, last] whose point base - i step u is occupied (ObjectShape::occupied),
+// first - 1 when none is: the sampler's palm back-off scans its lines with it, four points a go.
+int last_occupied(const ObjectShape& shape, const Eigen::Vector3f& base, const Eigen::Vector3f& u,
+                  float step, int first, int last);
+
 // The surface's noise: the median RMS distance of a point's k nearest neighbours from their
 // least-squares plane (on up to `samples` points). 0 for fewer than k points. `tree`, when
 // given, is a k-d tree over `points`.

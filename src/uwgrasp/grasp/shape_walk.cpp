@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "uwgrasp/grasp/lanes.hpp"
 #include "uwgrasp/grasp/shape.hpp"
 
 namespace uwgrasp::grasp {
@@ -59,6 +60,36 @@ float extent_along(const ObjectShape& shape, const V3& p, const V3& u, float lim
     each = true;
   }
   return last_skipped();
+}
+
+// The largest i in [first, last] whose point base - i step x is occupied, first - 1 when none
+// is: four points a go, each lane by ObjectShape::index_of's own arithmetic (a product, a
+// difference and a quotient per coordinate), so the same cells bit for bit as one at a time.
+int last_occupied(const ObjectShape& s, const V3& base, const V3& x, float step, int first,
+                  int last) {
+  if (s.cells.empty()) return first - 1;  // no grid: all free
+  using lanes::F4;
+  using lanes::splat;
+  const lanes::V3 b = lanes::V3::splat(base), d = lanes::V3::splat(x),
+                  o = lanes::V3::splat(s.origin);
+  const F4 voxel = splat(s.voxel), half = splat(0.5f), zero = splat(0.0f),
+           lowest = splat(float(first));
+  const F4 nx = splat(float(s.nx)), ny = splat(float(s.ny)), nz = splat(float(s.nz));
+  for (int i = last; i >= first; i -= 4) {
+    const F4 k{float(i), float(i - 1), float(i - 2), float(i - 3)};
+    const F4 c = k * splat(step);
+    const F4 qx = (b.x - c * d.x - o.x) / voxel + half, qy = (b.y - c * d.y - o.y) / voxel + half,
+             qz = (b.z - c * d.z - o.z) / voxel + half;
+    const int in = lanes::bits((k >= lowest) & (qx >= zero) & (qy >= zero) & (qz >= zero) &
+                               (qx < nx) & (qy < ny) & (qz < nz));
+    for (int lane = 0; lane < 4; ++lane)
+      if ((in >> lane & 1) &&
+          s.cells[(std::size_t(qz[lane]) * std::size_t(s.ny) + std::size_t(qy[lane])) *
+                      std::size_t(s.nx) +
+                  std::size_t(qx[lane])] != Occupancy::free)
+        return i - lane;
+  }
+  return first - 1;
 }
 
 }  // namespace uwgrasp::grasp
