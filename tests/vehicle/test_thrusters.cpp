@@ -2,10 +2,12 @@
 // are met exactly, infeasible ones saturate along their own direction, and holding an attitude
 // costs what the restoring forces ask.
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/vehicle/thrusters.hpp"
@@ -112,6 +114,39 @@ TEST(HoldCost, CurrentCostsThrust) {
   EXPECT_NEAR(fast, 8.38 / (4 * std::sqrt(0.5)) / 40, 1e-3);
   // Yaw matters once there is a current: beam-on costs more than head-on (Yvv > Xuu).
   EXPECT_GT(hold_cost(p, a, {0, 0, std::numbers::pi / 2}, {0.2, 0, 0}).utilisation(), fast);
+}
+
+// The scoring function keeps a thrust vector per thread: it must give what hold_cost gives, bit
+// for bit, on every thread, and switching between vehicles of other thruster counts on one
+// thread must not carry one's vector into the other.
+TEST(HoldCost, FunctionIsHoldCostOnEveryThreadAndVehicle) {
+  VehicleParams heavy;  // with weak thrusters, so that some attitudes saturate them
+  heavy.thrust_min = -4;
+  heavy.thrust_max = 4;
+  VehicleParams seven = heavy;  // the Heavy without one vertical thruster: still rank 6
+  seven.thrusters = heavy_thrusters();
+  seven.thrusters.pop_back();
+  const Eigen::Vector3d current(0.15, -0.05, 0.0);
+  const auto f_heavy = hold_cost_function(heavy, current);
+  const auto f_seven = hold_cost_function(seven, current);
+  const Allocator a_heavy = make_allocator(heavy), a_seven = make_allocator(seven);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> angle(-1.2, 1.2);
+  std::vector<Eigen::Vector3d> rpys(4000);
+  for (auto& r : rpys) r = {angle(rng), angle(rng), 2.0 * angle(rng)};
+  std::vector<double> got_heavy(rpys.size()), got_seven(rpys.size());
+  tbb::parallel_for(std::size_t(0), rpys.size(), [&](std::size_t i) {
+    got_heavy[i] = f_heavy(rpys[i]);  // alternating vehicles on each thread
+    got_seven[i] = f_seven(rpys[i]);
+  });
+  std::size_t saturated = 0;
+  for (std::size_t i = 0; i < rpys.size(); ++i) {
+    ASSERT_EQ(got_heavy[i], hold_cost(heavy, a_heavy, rpys[i], current).utilisation()) << i;
+    ASSERT_EQ(got_seven[i], hold_cost(seven, a_seven, rpys[i], current).utilisation()) << i;
+    saturated += got_seven[i] > 1.0;
+  }
+  EXPECT_GT(saturated, 0u);  // both sides of the bound are exercised
+  EXPECT_LT(saturated, rpys.size());
 }
 
 }  // namespace

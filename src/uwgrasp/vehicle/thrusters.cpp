@@ -37,13 +37,22 @@ Allocator make_allocator(const VehicleParams& p) {
   return a;
 }
 
+namespace {
+// The largest share of its limit any thruster needs for `thrust` (Allocation::utilisation).
+double utilisation_of(const Allocator& a, const Eigen::VectorXd& thrust) {
+  double u = 0;
+  for (Eigen::Index i = 0; i < thrust.size(); ++i) {
+    const double f = thrust(i);
+    u = std::max(u, f >= 0 ? f / a.f_max : f / a.f_min);
+  }
+  return u;
+}
+}  // namespace
+
 Allocation allocate(const Allocator& a, const Vector6d& tau) {
   Allocation out;
-  out.thrust = a.K_pinv * tau;
-  for (Eigen::Index i = 0; i < out.thrust.size(); ++i) {
-    const double f = out.thrust(i);
-    out.utilisation = std::max(out.utilisation, f >= 0 ? f / a.f_max : f / a.f_min);
-  }
+  out.thrust.noalias() = a.K_pinv * tau;
+  out.utilisation = utilisation_of(a, out.thrust);
   if (out.saturated()) out.thrust /= out.utilisation;
   out.achieved = a.K * out.thrust;
   out.residual = tau - out.achieved;
@@ -72,7 +81,12 @@ std::function<double(const Eigen::Vector3d& rpy)> hold_cost_function(
   if (!current.allFinite()) throw Error("vehicle.current must be finite");
   auto a = std::make_shared<const Allocator>(make_allocator(p));
   return [p, a, current](const Eigen::Vector3d& rpy) {
-    return hold_cost(p, *a, rpy, current).utilisation();
+    // Scoring calls this for every feasible candidate, on the worker threads: each keeps its
+    // thrust vector, so a stream of frames does not ask the allocator for one a call (it did
+    // ~1,000 times a frame). The same product and bound as allocate(), so the same utilisation.
+    thread_local Eigen::VectorXd thrust;
+    thrust.noalias() = a->K_pinv * hold_wrench(p, rpy, current);
+    return utilisation_of(*a, thrust);
   };
 }
 
