@@ -196,6 +196,7 @@ std::vector<std::uint32_t> eligible_points(std::span<const V3> points, std::span
             extent_along(shape, points[j], -normals[j].normalized(), max_width, 2.0f * shape.voxel) <= max_width;
   });
   std::vector<std::uint32_t> eligible;
+  eligible.reserve(points.size());
   for (std::uint32_t j = 0; j < points.size(); ++j)
     if (ok[j]) eligible.push_back(j);
   if (eligible.empty()) {

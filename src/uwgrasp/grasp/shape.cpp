@@ -6,32 +6,18 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <optional>
 #include <string>
 
 #include "uwgrasp/core/error.hpp"
-#include "uwgrasp/grasp/join.hpp"
 #include "uwgrasp/grasp/occlusion.hpp"
+#include "uwgrasp/grasp/shape_shell.hpp"
 
 namespace uwgrasp::grasp {
 
 namespace {
-using V3 = Eigen::Vector3f;
-
-struct Grid {
-  ObjectShape& s;
-  std::size_t index(int i, int j, int k) const {
-    return (std::size_t(k) * std::size_t(s.ny) + std::size_t(j)) * std::size_t(s.nx) + std::size_t(i);
-  }
-  bool inside(int i, int j, int k) const {
-    return i >= 0 && j >= 0 && k >= 0 && i < s.nx && j < s.ny && k < s.nz;
-  }
-  Eigen::Vector3i cell(const V3& p) const { return s.cell_of(p); }
-  V3 centre(int i, int j, int k) const { return s.origin + s.voxel * V3(float(i), float(j), float(k)); }
-  Occupancy get(int i, int j, int k) const { return inside(i, j, k) ? s.cells[index(i, j, k)] : Occupancy::free; }
-};
+using namespace shape_detail;
 
 // The seafloor's depth (L's z) under (x, y), or nullopt where the plane is too steep to rest on.
 std::optional<float> floor_z(const std::optional<FloorPlane>& f, float x, float y) {
@@ -83,6 +69,7 @@ std::vector<int> mark_surfaces(Grid g, std::span<const V3> level, std::span<cons
     return true;
   };
   for (const V3& p : level) mark(p, Occupancy::seen);
+  s.mirrored_points.reserve(mirrored.size()), s.mirrored_normals.reserve(mirrored.size());
   for (std::size_t i = 0; i < mirrored.size(); ++i)
     if (mark(mirrored[i], Occupancy::mirrored))
       s.mirrored_points.push_back(mirrored[i]), s.mirrored_normals.push_back(mirrored_normals[i]);
@@ -127,107 +114,6 @@ void fill_unseen(Grid g, std::span<const V3> camera, const std::vector<int>& top
   });
 }
 
-// Whether a face neighbour of (i, j, k) is `outside`; a voxel off the grid's faces reads its
-// neighbours by strides, without a bounds test each (the shells scan every voxel of the grid).
-template <class Outside>
-bool on_boundary(Grid g, int i, int j, int k, Outside outside) {
-  const ObjectShape& s = g.s;
-  if (i >= 1 && j >= 1 && k >= 1 && i + 1 < s.nx && j + 1 < s.ny && k + 1 < s.nz) {
-    const std::ptrdiff_t sy = s.nx, sz = std::ptrdiff_t(s.nx) * s.ny;
-    const Occupancy* c = s.cells.data() + g.index(i, j, k);
-    return outside(c[-1]) || outside(c[1]) || outside(c[-sy]) || outside(c[sy]) || outside(c[-sz]) ||
-           outside(c[sz]);
-  }
-  return outside(g.get(i - 1, j, k)) || outside(g.get(i + 1, j, k)) || outside(g.get(i, j - 1, k)) ||
-         outside(g.get(i, j + 1, k)) || outside(g.get(i, j, k - 1)) || outside(g.get(i, j, k + 1));
-}
-
-// Whether a mirrored voxel touches (i, j, k): the mirrored points already give the surface there,
-// with the seen side's normals, which a voxel shell only approximates.
-bool by_mirrored(Grid g, int i, int j, int k) {
-  for (int dk = -1; dk <= 1; ++dk)
-    for (int dj = -1; dj <= 1; ++dj)
-      for (int di = -1; di <= 1; ++di)
-        if (g.get(i + di, j + dj, k + dk) == Occupancy::mirrored) return true;
-  return false;
-}
-
-// Minus the sum of the offsets of the voxels in the 5 x 5 x 5 block around (i, j, k) that are
-// not `outside`: a block wholly in the grid is read by strides, without a bounds test per voxel.
-template <class Outside>
-V3 away_from_mass(Grid g, int i, int j, int k, Outside outside) {
-  const ObjectShape& s = g.s;
-  Eigen::Vector3i sum = Eigen::Vector3i::Zero();
-  if (i >= 2 && j >= 2 && k >= 2 && i + 2 < s.nx && j + 2 < s.ny && k + 2 < s.nz) {
-    const std::ptrdiff_t sy = s.nx, sz = std::ptrdiff_t(s.nx) * s.ny;
-    const Occupancy* c = s.cells.data() + g.index(i, j, k);
-    // Without a branch per voxel: a row's count and its first moment (the 5 x 5 x 5 block of a
-    // shell voxel is half in, half out, and a branch on each mispredicted half the time).
-    for (int dk = -2; dk <= 2; ++dk)
-      for (int dj = -2; dj <= 2; ++dj) {
-        const Occupancy* row = c + dk * sz + dj * sy;
-        int count = 0, moment = 0;
-        for (int di = -2; di <= 2; ++di) {
-          const int in = !outside(row[di]);
-          count += in, moment += in * di;
-        }
-        sum -= Eigen::Vector3i(moment, count * dj, count * dk);
-      }
-  } else {
-    for (int dk = -2; dk <= 2; ++dk)
-      for (int dj = -2; dj <= 2; ++dj)
-        for (int di = -2; di <= 2; ++di)
-          if (!outside(g.get(i + di, j + dj, k + dk))) sum -= Eigen::Vector3i(di, dj, dk);
-  }
-  return sum.cast<float>();
-}
-
-// Whether the 8 cells from c on are all free: most of a grid is (87 % of mOSD_learn17's object's),
-// and the shells skip those 8 at a time.
-inline bool free_run(const Occupancy* c) {
-  static_assert(sizeof(Occupancy) == 1 && Occupancy::free == Occupancy{0});
-  std::uint64_t word;
-  std::memcpy(&word, c, sizeof word);
-  return word == 0;
-}
-
-// The unseen voxels (`part` says which) next to one outside the part (`outside`), with normals
-// pointing away from the part's mass around them (the sum of the offsets of the part's voxels
-// in a 5 x 5 x 5 block, negated); with `mirrored_surface`, not where mirrored points lie.
-template <class Part, class Outside>
-void shell(Grid g, Part part, Outside outside, bool mirrored_surface, std::vector<V3>& points,
-           std::vector<V3>& normals) {
-  const ObjectShape& s = g.s;
-  // Runs of kSlabs slabs of constant k in parallel, each into its own lists, joined in k order:
-  // the same points in the same order as one sweep (a list per slab: ~3,000 allocator calls).
-  constexpr int kSlabs = 4;
-  const int runs = (s.nz + kSlabs - 1) / kSlabs;
-  std::vector<std::vector<V3>> run_points(static_cast<std::size_t>(runs)),
-      run_normals(static_cast<std::size_t>(runs));
-  tbb::parallel_for(0, runs, [&](int r) {
-    std::vector<V3>& out_p = run_points[std::size_t(r)];
-    std::vector<V3>& out_n = run_normals[std::size_t(r)];
-    for (int k = r * kSlabs; k < std::min(s.nz, (r + 1) * kSlabs); ++k)
-      for (int j = 0; j < s.ny; ++j)
-        for (int i = 0; i < s.nx; ++i) {
-          if (i + 8 <= s.nx && free_run(s.cells.data() + g.index(i, j, k))) {
-            i += 7;
-            continue;
-          }
-          const Occupancy o = s.cells[g.index(i, j, k)];
-          if (o == Occupancy::free || o == Occupancy::seen || o == Occupancy::mirrored || !part(o))
-            continue;
-          if (!on_boundary(g, i, j, k, outside) || (mirrored_surface && by_mirrored(g, i, j, k)))
-            continue;
-          const V3 n = away_from_mass(g, i, j, k, outside);
-          if (n.norm() < 1e-3f) continue;  // no side faces away from the mass: not a surface
-          out_p.push_back(g.centre(i, j, k));
-          out_n.push_back(n.normalized());
-        }
-  });
-  join_in_order(run_points, points);
-  join_in_order(run_normals, normals);
-}
 }  // namespace
 
 std::size_t ObjectShape::count(Occupancy o) const { return std::size_t(std::count(cells.begin(), cells.end(), o)); }

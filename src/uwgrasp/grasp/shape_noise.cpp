@@ -22,13 +22,19 @@ float surface_noise(std::span<const Eigen::Vector3f> points, std::size_t k, std:
   const cloud::KdTree& tree = shared ? *shared : own.emplace(points);
   const std::size_t step = std::max<std::size_t>(1, points.size() / samples);
   std::vector<float> rms((points.size() + step - 1) / step);
-  // Ranges of at least 64 samples: the lists are a range's, not a sample's.
+  // Ranges of at least 64 samples: the lists are a range's, not a sample's; on the stack for
+  // the k the shape asks (12), so a stream of frames does not ask the allocator for them.
+  constexpr std::size_t kOnStack = 32;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rms.size(), 64), [&](const auto& r) {
-    std::vector<std::uint32_t> idx(k);
-    std::vector<float> d2(k);
+    std::uint32_t idx_stack[kOnStack];
+    float d2_stack[kOnStack];
+    std::vector<std::uint32_t> idx_heap(k > kOnStack ? k : 0);
+    std::vector<float> d2_heap(idx_heap.size());
+    std::uint32_t* idx = k > kOnStack ? idx_heap.data() : idx_stack;
+    float* d2 = k > kOnStack ? d2_heap.data() : d2_stack;
     for (std::size_t s = r.begin(); s != r.end(); ++s) {
-      const std::size_t n = tree.knn(points[s * step], k, idx.data(), d2.data());
-      const MeanCovariance mc = mean_covariance(points, std::span(idx).first(n));
+      const std::size_t n = tree.knn(points[s * step], k, idx, d2);
+      const MeanCovariance mc = mean_covariance(points, std::span<const std::uint32_t>(idx, n));
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(mc.cov, Eigen::EigenvaluesOnly);
       rms[s] = float(std::sqrt(std::max(0.0, es.eigenvalues()[0])));
     }
