@@ -1,8 +1,9 @@
 #pragma once
-// Counts the calls to the global operator new (every standard container's allocation; not
-// Eigen's or TBB's own malloc calls) while a function runs: how much a frame of a warm stream
-// still asks of the allocator. Linking alloc_count.cpp replaces operator new and delete for the
-// whole program.
+// Counts the heap allocations (malloc, calloc, realloc and the aligned forms: operator new's,
+// Eigen's, TBB's, the C libraries') while a function runs: how much a frame of a warm stream
+// still asks of the allocator. Linking alloc_count.cpp replaces glibc's malloc family for the
+// whole program with counting calls into glibc's own (not for sanitizer builds, which replace
+// it themselves).
 #include <cstddef>
 #include <functional>
 
@@ -13,7 +14,7 @@ struct Allocations {
   std::size_t bytes = 0;
 };
 
-// The operator new calls and bytes that f makes (on any thread) while it runs.
+// The allocation calls and bytes asked that f makes (on any thread) while it runs.
 Allocations count_allocations(const std::function<void()>& f);
 
 }  // namespace uwgrasp::bench

@@ -7,7 +7,7 @@
 //   top of `segment.object.by=largest`). --alone: each frame's segments,
 //   then its detections, as streams of their own at 1 and 2 threads (or T only), nothing else in
 //   between (as a node that only segments, or only detects, runs them); no other table.
-// Also counts the operator new calls of one more frame of the warm stream (alloc_count.hpp). The
+// Also counts the heap allocations of one more frame of the warm stream (alloc_count.hpp). The
 // segments stream reuses one Scene and one Workspace (segment/pipeline.hpp), as a node would.
 #include <tbb/global_control.h>
 
@@ -197,8 +197,12 @@ int main(int argc, char** argv) {
       row.stages.count(s) ? std::printf(" %.1f |", median(row.stages[s])) : std::printf(" - |");
     std::printf("\n");
   }
-  std::printf("\nCalls to operator new in one more frame of the warm stream at 2 threads (calls, MB asked):\n\n"
-              "| frame | segments calls | segments MB | best grasp calls | best grasp MB |\n|---|---|---|---|---|\n");
+  std::printf(
+      "\nHeap allocations (malloc and its family: operator new's, Eigen's, TBB's) in one more "
+      "frame of "
+      "the warm stream at 2 threads (calls, MB asked):\n\n"
+      "| frame | segments calls | segments MB | best grasp calls | best grasp MB "
+      "|\n|---|---|---|---|---|\n");
   for (const auto& [name, row] : stage_rows)
     std::printf("| %s | %zu | %.1f | %zu | %.1f |\n", name.c_str(), row.seg_alloc.calls, double(row.seg_alloc.bytes) / 1048576.0,
                 row.grasp_alloc.calls, double(row.grasp_alloc.bytes) / 1048576.0);
