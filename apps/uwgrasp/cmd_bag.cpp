@@ -62,32 +62,34 @@ int detect_bag(const BagOptions& o, const io::Config& cfg, const std::string& js
   std::string lines;
   std::vector<double> ms;
   std::size_t n = 0, with_grasps = 0, bad = 0;
-  uwgrasp_ros::for_each_cloud(o.bag, o.topic, o.imu_topic, o.base_frame, [&](const uwgrasp_ros::BagCloud& b) {
-    ++n;
-    progress("uwgrasp detect: frame " + std::to_string(n));
-    if (!b.error.empty()) {
-      ++bad;
-      std::printf("frame %zu at %.3f: skipped: %s\n", n, b.stamp, b.error.c_str());
-      return;
-    }
-    uwgrasp_ros::PlainDetection d;
-    try {
-      d = engine.detect(b.cloud, b.capture, b.frame_id, UWGRASP_VERSION, stream);
-    } catch (const Error& e) {
-      ++bad;
-      std::printf("frame %zu at %.3f: skipped: %s\n", n, b.stamp, e.what());
-      return;
-    }
-    with_grasps += !d.grasps.empty();
-    ms.push_back(d.total_ms);
-    nlohmann::json j = d.json.empty() ? nlohmann::json{{"grasps", nlohmann::json::array()}, {"warning", d.warning}}
-                                      : nlohmann::json::parse(d.json);
-    j["stamp"] = b.stamp;
-    j["frame_id"] = b.frame_id;
-    lines += j.dump() + "\n";
-    std::printf("frame %zu at %.3f: %zu grasps%s, %.1f ms\n", n, b.stamp, d.grasps.size(),
-                d.grasps.empty() ? (" (" + d.warning + ")").c_str() : "", d.total_ms);
-  });
+  uwgrasp_ros::for_each_cloud(
+      o.bag, o.topic, o.imu_topic, o.base_frame, stream, [&](const uwgrasp_ros::BagCloud& b) {
+        ++n;
+        progress("uwgrasp detect: frame " + std::to_string(n));
+        if (!b.error.empty()) {
+          ++bad;
+          std::printf("frame %zu at %.3f: skipped: %s\n", n, b.stamp, b.error.c_str());
+          return;
+        }
+        uwgrasp_ros::PlainDetection d;
+        try {
+          d = engine.detect_frame(b.capture, b.frame_id, UWGRASP_VERSION, stream);
+        } catch (const Error& e) {
+          ++bad;
+          std::printf("frame %zu at %.3f: skipped: %s\n", n, b.stamp, e.what());
+          return;
+        }
+        with_grasps += !d.grasps.empty();
+        ms.push_back(d.total_ms);
+        nlohmann::json j = d.json.empty() ? nlohmann::json{{"grasps", nlohmann::json::array()},
+                                                           {"warning", d.warning}}
+                                          : nlohmann::json::parse(d.json);
+        j["stamp"] = b.stamp;
+        j["frame_id"] = b.frame_id;
+        lines += j.dump() + "\n";
+        std::printf("frame %zu at %.3f: %zu grasps%s, %.1f ms\n", n, b.stamp, d.grasps.size(),
+                    d.grasps.empty() ? (" (" + d.warning + ")").c_str() : "", d.total_ms);
+      });
   std::printf("%zu frames on %s: %zu with grasps, %zu skipped; detection median %.1f ms, 95th percentile %.1f ms\n",
               n, o.topic.c_str(), with_grasps, bad, percentile(ms, 0.5), percentile(ms, 0.95));
   if (!jsonl.empty()) {

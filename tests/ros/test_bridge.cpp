@@ -9,12 +9,14 @@
 #include "fixtures/objects.hpp"
 #include "uwgrasp/core/pose.hpp"
 #include "uwgrasp/grasp/detector.hpp"
+#include "uwgrasp/sim/render.hpp"
+#include "uwgrasp/sim/scene.hpp"
 
 namespace uwgrasp_ros {
 namespace {
 
 using uwgrasp::Pose;
-
+namespace sim = uwgrasp::sim;
 
 // The simulator's convention (sim/scene.cpp): a vehicle with roll/pitch/yaw in a z-up world has
 // its Fossen body at Rx(pi) * R(rpy); its ROS (x forward, y left, z up) body is that times Rx(pi).
@@ -109,6 +111,61 @@ TEST(RosBridge, EngineThroughAStreamGivesWhatItGivesAlone) {
       EXPECT_EQ(got.grasps[i].score, want.grasps[i].score);
     }
   }
+}
+
+// The node's and the bag reader's path: a frame written in place into a stream's cloud
+// (Stream::frame), as from_msg does, detects as the same points in a PlainCloud do: organised or
+// not, with colours or not, frames of other sizes in between, and the same errors.
+TEST(RosBridge, FramesFilledInPlaceGiveWhatPlainCloudsGive) {
+  const sim::Scene scene = sim::builtin_scene("thesis");
+  sim::RenderConfig rc;
+  rc.noise.enabled = true;
+  rc.camera.width = 320, rc.camera.height = 240;
+  const PlainCloud organised =
+      plain_cloud(sim::render_rgbd(sim::World(scene), sim::camera_pose(scene, {}), rc, 4).cloud);
+  const auto obj = uwgrasp::fixtures::render_object(uwgrasp::fixtures::Object::barbell, {}, 4000);
+  PlainCloud unorganised = plain_cloud(obj.cloud);
+  unorganised.rgb.clear();
+  PlainCloud nothing = organised, behind = unorganised;  // no finite point; behind the camera
+  for (float& v : nothing.xyz) v = std::nanf("");
+  for (std::size_t i = 2; i < behind.xyz.size(); i += 3) behind.xyz[i] = -behind.xyz[i];
+  uwgrasp::io::Config cfg;
+  cfg.segment.object.by = uwgrasp::segment::ObjectBy::largest;
+  const Engine engine = make_engine(cfg);
+  Stream stream;
+  const auto fill = [&](const PlainCloud& c) {
+    const FrameBuffers b = stream.frame(c.width, c.height, !c.rgb.empty());
+    std::copy(c.xyz.begin(), c.xyz.end(), b.xyz);
+    if (b.rgb) std::copy(c.rgb.begin(), c.rgb.end(), b.rgb);
+  };
+  std::size_t detected = 0;
+  for (const PlainCloud* c : std::vector<const PlainCloud*>{&organised, &unorganised, &nothing,
+                                                            &behind, &unorganised, &organised}) {
+    fill(*c);
+    if (c == &nothing || c == &behind) {
+      EXPECT_THROW(engine.detect_frame({}, "x", "t", stream), uwgrasp::Error);
+      EXPECT_THROW(engine.detect(*c, {}, "x", "t"), uwgrasp::Error);
+      continue;
+    }
+    const PlainDetection got = engine.detect_frame({}, "frame", "test", stream);
+    const PlainDetection want = engine.detect(*c, {}, "frame", "test");
+    ASSERT_TRUE(want.warning.empty()) << want.warning;  // a comparison of real results
+    EXPECT_EQ(got.warning, want.warning);
+    EXPECT_EQ(got.points_in, c->size());
+    EXPECT_EQ(got.object_xyz, want.object_xyz);
+    EXPECT_EQ(got.candidates, want.candidates);
+    EXPECT_EQ(got.feasible, want.feasible);
+    ASSERT_EQ(got.grasps.size(), want.grasps.size());
+    ASSERT_FALSE(got.grasps.empty());
+    for (std::size_t i = 0; i < got.grasps.size(); ++i) {
+      EXPECT_EQ(got.grasps[i].pose.p, want.grasps[i].pose.p);
+      EXPECT_EQ(got.grasps[i].pose.q, want.grasps[i].pose.q);
+      EXPECT_EQ(got.grasps[i].score, want.grasps[i].score);
+    }
+    ++detected;
+  }
+  EXPECT_EQ(detected, 4u);
+  EXPECT_EQ(stream.frame(0, 0, true).xyz, nullptr);  // an empty frame has nowhere to write
 }
 
 TEST(RosBridge, CloudsThatCannotBeInACameraFrameAreErrors) {

@@ -67,6 +67,37 @@ TEST(RosMessages, ReadingIntoOneCloudGivesWhatAFreshReadGives) {
   EXPECT_EQ(std::memcmp(reused.xyz.data(), before.xyz.data(), 4 * before.xyz.size()), 0);
 }
 
+// Read straight into a stream's frame (the node's path), a message detects as its PlainCloud
+// does; a malformed message leaves the frame as it was.
+TEST(RosMessages, ReadingIntoAStreamGivesWhatAPlainCloudGives) {
+  const Engine engine("", {});
+  Stream stream;
+  for (const auto& [w, h, colours] :
+       {std::tuple{8u, 5u, true}, std::tuple{3u, 2u, false}, std::tuple{40u, 1u, true}}) {
+    const sensor_msgs::PointCloud2 m = to_msg(grid(w, h, colours));
+    from_msg(m, stream);
+    const PlainDetection got = engine.detect_frame({}, "grid", "t", stream);
+    const PlainDetection want = engine.detect(from_msg(m), {}, "grid", "t");
+    EXPECT_EQ(got.points_in, std::size_t(w) * h);
+    EXPECT_EQ(got.warning, want.warning);
+    EXPECT_FALSE(got.warning.empty());  // a grid of points: no object to grasp
+    EXPECT_EQ(got.json, want.json);
+  }
+  sensor_msgs::PointCloud2 bad = to_msg(grid(2, 2, false));
+  bad.fields.erase(bad.fields.begin());
+  EXPECT_THROW(from_msg(bad, stream), uwgrasp::Error);
+  EXPECT_EQ(engine.detect_frame({}, "grid", "t", stream).points_in, 40u);
+  sensor_msgs::PointCloud2 behind = to_msg(grid(4, 3, false));  // read, then refused by the engine
+  for (std::size_t i = 8; i + 4 <= behind.data.size(); i += behind.point_step) {
+    float z;
+    std::memcpy(&z, &behind.data[i], 4);
+    z = -z;
+    std::memcpy(&behind.data[i], &z, 4);
+  }
+  from_msg(behind, stream);
+  EXPECT_THROW(engine.detect_frame({}, "grid", "t", stream), uwgrasp::Error);
+}
+
 // FLOAT64 coordinates, padding in each point and at the end of each row: what other drivers send.
 TEST(RosMessages, DoublesAndPaddedRowsAreRead) {
   sensor_msgs::PointCloud2 m;

@@ -102,7 +102,8 @@ void write_bag(const std::string& path, const BagTopics& tp, const Pose7& base_f
 }
 
 void for_each_cloud(const std::string& path, const std::string& topic, const std::string& imu_topic,
-                    const std::string& base_frame, const std::function<void(const BagCloud&)>& fn) {
+                    const std::string& base_frame, Stream& into,
+                    const std::function<void(const BagCloud&)>& fn) {
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);
@@ -137,7 +138,7 @@ void for_each_cloud(const std::string& path, const std::string& topic, const std
       b.frame_id = c->header.frame_id;
       try {
         b.capture = capture_frames(tf, c->header, {base_frame, ""}, rp).capture;
-        b.cloud = from_msg(*c);
+        from_msg(*c, into);
       } catch (const std::exception& e) {
         b.error = e.what();
       }

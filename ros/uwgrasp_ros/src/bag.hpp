@@ -34,19 +34,21 @@ struct BagFrame {
 void write_bag(const std::string& path, const BagTopics& topics, const Pose7& base_from_camera,
                const std::vector<BagFrame>& frames);
 
+// One cloud of a bag; its points are in the reader's Stream (Stream::frame).
 struct BagCloud {
   double stamp = 0.0;
   std::string frame_id;
-  PlainCloud cloud;
   Capture capture;     // from the bag's tf (base -> cloud frame) and IMU
   std::string error;   // a malformed message or a missing transform ("" = fine)
 };
 
-// Calls `fn` for each PointCloud2 on `topic`, in time order, with the capture from the bag's /tf,
-// /tf_static (base_frame -> the cloud's frame) and the newest message on `imu_topic` before it
-// ("" = none). Throws uwgrasp::Error naming the bag for an unreadable bag or a topic that has no
-// PointCloud2 (listing the topics that have).
+// Calls `fn` for each PointCloud2 on `topic`, in time order, with the cloud read into `into`'s
+// frame (for Engine::detect_frame) and the capture from the bag's /tf, /tf_static (base_frame ->
+// the cloud's frame) and the newest message on `imu_topic` before it ("" = none). Throws
+// uwgrasp::Error naming the bag for an unreadable bag or a topic that has no PointCloud2 (listing
+// the topics that have).
 void for_each_cloud(const std::string& path, const std::string& topic, const std::string& imu_topic,
-                    const std::string& base_frame, const std::function<void(const BagCloud&)>& fn);
+                    const std::string& base_frame, Stream& into,
+                    const std::function<void(const BagCloud&)>& fn);
 
 }  // namespace uwgrasp_ros

@@ -68,6 +68,52 @@ void check_layout(const sensor_msgs::PointCloud2& m) {
 }
 }  // namespace
 
+namespace {
+// Where x, y, z and the colours sit in each point, the message checked first.
+struct Layout {
+  Field xyz[3];
+  Field rgb;
+};
+
+Layout layout_of(const sensor_msgs::PointCloud2& m) {
+  check_layout(m);
+  Layout l;
+  const char* names[3] = {"x", "y", "z"};
+  for (int k = 0; k < 3; ++k) {
+    l.xyz[k] = find_field(m, names[k]);
+    if (!l.xyz[k].found) throw Error(std::string("PointCloud2: no field '") + names[k] + "'");
+    if (l.xyz[k].type != sensor_msgs::PointField::FLOAT32 &&
+        l.xyz[k].type != sensor_msgs::PointField::FLOAT64)
+      throw Error(std::string("PointCloud2: field '") + names[k] + "' is not FLOAT32 or FLOAT64");
+  }
+  l.rgb = find_field(m, "rgb");
+  if (!l.rgb.found) l.rgb = find_field(m, "rgba");
+  if (l.rgb.found && type_size(l.rgb.type) != 4)
+    throw Error("PointCloud2: field 'rgb' is not 4 bytes");
+  return l;
+}
+
+// Into width x height points, row-major: 3 floats each into `xyz`, 3 bytes each into `rgb` when
+// the message has colours.
+void read_points(const sensor_msgs::PointCloud2& m, const Layout& l, float* xyz,
+                 std::uint8_t* rgb) {
+  for (std::uint32_t r = 0; r < m.height; ++r) {
+    const std::uint8_t* row = m.data.data() + std::size_t(r) * m.row_step;
+    for (std::uint32_t col = 0; col < m.width; ++col) {
+      const std::uint8_t* p = row + std::size_t(col) * m.point_step;
+      const std::size_t i = std::size_t(r) * m.width + col;
+      for (int k = 0; k < 3; ++k) xyz[3 * i + k] = read_coord(p, l.xyz[k]);
+      if (l.rgb.found) {
+        std::uint32_t packed;  // 0x00RRGGBB, as PCL packs it
+        std::memcpy(&packed, p + l.rgb.offset, sizeof packed);
+        rgb[3 * i] = std::uint8_t(packed >> 16), rgb[3 * i + 1] = std::uint8_t(packed >> 8);
+        rgb[3 * i + 2] = std::uint8_t(packed);
+      }
+    }
+  }
+}
+}  // namespace
+
 PlainCloud from_msg(const sensor_msgs::PointCloud2& m) {
   PlainCloud c;
   from_msg(m, c);
@@ -75,37 +121,19 @@ PlainCloud from_msg(const sensor_msgs::PointCloud2& m) {
 }
 
 void from_msg(const sensor_msgs::PointCloud2& m, PlainCloud& c) {
-  check_layout(m);
-  Field xyz[3];
-  const char* names[3] = {"x", "y", "z"};
-  for (int k = 0; k < 3; ++k) {
-    xyz[k] = find_field(m, names[k]);
-    if (!xyz[k].found) throw Error(std::string("PointCloud2: no field '") + names[k] + "'");
-    if (xyz[k].type != sensor_msgs::PointField::FLOAT32 && xyz[k].type != sensor_msgs::PointField::FLOAT64)
-      throw Error(std::string("PointCloud2: field '") + names[k] + "' is not FLOAT32 or FLOAT64");
-  }
-  Field rgb = find_field(m, "rgb");
-  if (!rgb.found) rgb = find_field(m, "rgba");
-  if (rgb.found && type_size(rgb.type) != 4) throw Error("PointCloud2: field 'rgb' is not 4 bytes");
+  const Layout l = layout_of(m);
   c.width = m.width;
   c.height = m.height;
   const std::size_t n = std::size_t(m.width) * m.height;
   c.xyz.resize(3 * n);
-  c.rgb.resize(rgb.found ? 3 * n : 0);
-  for (std::uint32_t r = 0; r < m.height; ++r) {
-    const std::uint8_t* row = m.data.data() + std::size_t(r) * m.row_step;
-    for (std::uint32_t col = 0; col < m.width; ++col) {
-      const std::uint8_t* p = row + std::size_t(col) * m.point_step;
-      const std::size_t i = std::size_t(r) * m.width + col;
-      for (int k = 0; k < 3; ++k) c.xyz[3 * i + k] = read_coord(p, xyz[k]);
-      if (rgb.found) {
-        std::uint32_t packed;  // 0x00RRGGBB, as PCL packs it
-        std::memcpy(&packed, p + rgb.offset, sizeof packed);
-        c.rgb[3 * i] = std::uint8_t(packed >> 16), c.rgb[3 * i + 1] = std::uint8_t(packed >> 8);
-        c.rgb[3 * i + 2] = std::uint8_t(packed);
-      }
-    }
-  }
+  c.rgb.resize(l.rgb.found ? 3 * n : 0);
+  read_points(m, l, c.xyz.data(), c.rgb.data());
+}
+
+void from_msg(const sensor_msgs::PointCloud2& m, Stream& out) {
+  const Layout l = layout_of(m);
+  const FrameBuffers b = out.frame(m.width, m.height, l.rgb.found);
+  read_points(m, l, b.xyz, b.rgb);
 }
 
 sensor_msgs::PointCloud2 to_msg(const PlainCloud& c) {

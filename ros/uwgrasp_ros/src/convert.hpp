@@ -17,6 +17,9 @@ PlainCloud from_msg(const sensor_msgs::PointCloud2& msg);
 // The same into `out`, reusing its buffers (a node's stream of frames); on a throw `out` is
 // unchanged.
 void from_msg(const sensor_msgs::PointCloud2& msg, PlainCloud& out);
+// The same straight into a stream's frame (Stream::frame), for Engine::detect_frame: the node's
+// one copy of a message. On a throw the stream's frame is unchanged.
+void from_msg(const sensor_msgs::PointCloud2& msg, Stream& out);
 
 // x, y, z FLOAT32 and rgb (FLOAT32-packed, as PCL writes it) when the cloud has colours.
 sensor_msgs::PointCloud2 to_msg(const PlainCloud& cloud);

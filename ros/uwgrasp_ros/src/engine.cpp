@@ -36,24 +36,39 @@ PlainCloud plain_cloud(const uwgrasp::Cloud& c) {
 namespace {
 std::array<double, 3> arr(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-// Into `c`, reusing its buffers.
-void to_cloud(const PlainCloud& in, uwgrasp::Cloud& c) {
-  const std::size_t n = in.size();
+// `c` made width x height points, its buffers' memory kept: what Stream::frame hands a reader.
+void shape_frame(std::uint32_t width, std::uint32_t height, bool colours, uwgrasp::Cloud& c) {
+  const std::size_t n = std::size_t(width) * height;
   c.points.resize(n);
-  for (std::size_t i = 0; i < n; ++i) c.points[i] = {in.xyz[3 * i], in.xyz[3 * i + 1], in.xyz[3 * i + 2]};
-  c.colors.resize(in.rgb.size() == 3 * n ? n : 0);
-  for (std::size_t i = 0; i < c.colors.size(); ++i)
-    c.colors[i] = {in.rgb[3 * i], in.rgb[3 * i + 1], in.rgb[3 * i + 2]};
+  c.colors.resize(colours ? n : 0);
   c.normals.clear(), c.curvature.clear(), c.labels.clear();
-  c.width = in.height > 1 ? in.width : static_cast<std::uint32_t>(n);
-  c.height = in.height > 1 ? in.height : 1;
+  c.width = height > 1 ? width : static_cast<std::uint32_t>(n);
+  c.height = height > 1 ? height : 1;
+}
+
+// The checks of a frame as read, before the engine sees it.
+void check_frame(const uwgrasp::Cloud& c) {
   uwgrasp::check_consistent(c, "PointCloud2");
   const uwgrasp::BehindCount behind = uwgrasp::behind_camera(c);
-  if (behind.finite == 0) throw Error("PointCloud2: no finite point (" + std::to_string(n) + " points, all NaN or inf)");
+  if (behind.finite == 0)
+    throw Error("PointCloud2: no finite point (" + std::to_string(c.size()) +
+                " points, all NaN or inf)");
   if (behind.share() >= 0.01)
     throw Error(
         "1 % or more of the points lie behind the camera: the cloud's frame is not a camera "
         "optical frame (z forward); publish the cloud in the camera's frame");
+}
+
+// Into `c`, reusing its buffers. Its points as given, then its layout: check_frame names a width x
+// height that is not the point count.
+void to_cloud(const PlainCloud& in, uwgrasp::Cloud& c) {
+  const std::size_t n = in.size();
+  shape_frame(static_cast<std::uint32_t>(n), 1, in.rgb.size() == 3 * n, c);
+  for (std::size_t i = 0; i < n; ++i)
+    c.points[i] = {in.xyz[3 * i], in.xyz[3 * i + 1], in.xyz[3 * i + 2]};
+  for (std::size_t i = 0; i < c.colors.size(); ++i)
+    c.colors[i] = {in.rgb[3 * i], in.rgb[3 * i + 1], in.rgb[3 * i + 2]};
+  if (in.height > 1) c.width = in.width, c.height = in.height;
 }
 
 PlainGrasp plain(const uwgrasp::grasp::Grasp& g, const uwgrasp::grasp::Frames& f, const uwgrasp::grasp::Gripper& model) {
@@ -117,6 +132,16 @@ Stream::~Stream() = default;
 Stream::Stream(Stream&&) noexcept = default;
 Stream& Stream::operator=(Stream&&) noexcept = default;
 
+// A point and a colour are their values and nothing more, so the vectors are plain arrays of
+// floats and bytes (as Eigen's own Map reads them).
+static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float) && sizeof(uwgrasp::Rgb8) == 3);
+FrameBuffers Stream::frame(std::uint32_t width, std::uint32_t height, bool colours) {
+  uwgrasp::Cloud& c = impl_->cloud;
+  shape_frame(width, height, colours, c);
+  if (c.points.empty()) return {};
+  return {c.points.front().data(), colours ? &c.colors.front().r : nullptr};
+}
+
 Engine::Engine(const std::string& path, const std::vector<std::string>& sets) : impl_(std::make_unique<Impl>()) {
   if (path.empty()) uwgrasp::io::apply_overrides(impl_->config, sets);
   else impl_->config = uwgrasp::io::load_config(path, sets);
@@ -151,8 +176,14 @@ PlainDetection Engine::detect(const PlainCloud& in, const Capture& capture, cons
 PlainDetection Engine::detect(const PlainCloud& in, const Capture& capture,
                               const std::string& input, const std::string& version,
                               Stream& stream) const {
-  uwgrasp::Cloud& cloud = stream.impl_->cloud;
-  to_cloud(in, cloud);
+  to_cloud(in, stream.impl_->cloud);
+  return detect_frame(capture, input, version, stream);
+}
+
+PlainDetection Engine::detect_frame(const Capture& capture, const std::string& input,
+                                    const std::string& version, Stream& stream) const {
+  const uwgrasp::Cloud& cloud = stream.impl_->cloud;
+  check_frame(cloud);
   uwgrasp::io::Config cfg = impl_->config;
   if (capture.ros_body_from_camera) {
     const MountRpy m = mount_from(*capture.ros_body_from_camera);

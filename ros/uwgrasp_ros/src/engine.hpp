@@ -85,6 +85,12 @@ struct PlainDetection {
   std::string json;                       // grasps.json (INTERFACE.md), compact, one line
 };
 
+// Where a reader writes a frame's points in place (Stream::frame), row-major.
+struct FrameBuffers {
+  float* xyz = nullptr;         // 3 floats a point; NaN where there is no point
+  std::uint8_t* rgb = nullptr;  // 3 bytes a point (r, g, b), or null: the frame has no colours
+};
+
 // A stream's buffers, kept from frame to frame by a node or a bag reader: the cloud, the
 // segments' workspace and the detection, so that a frame reuses the memory of the frames before
 // it (grasp::detect's stream form). Opaque here: its contents are uwgrasp's C++20 types. One
@@ -95,6 +101,10 @@ class Stream {
   ~Stream();
   Stream(Stream&&) noexcept;
   Stream& operator=(Stream&&) noexcept;
+  // The stream's cloud made width x height points (with colours or none; height 1: unorganised),
+  // for a reader to fill in place before Engine::detect_frame: a message is copied once, into the
+  // cloud the engine detects on, not first into a PlainCloud. Keeps the buffers' memory.
+  FrameBuffers frame(std::uint32_t width, std::uint32_t height, bool colours);
 
  private:
   struct Impl;
@@ -122,6 +132,10 @@ class Engine {
   // The same through a stream's buffers; the same result.
   PlainDetection detect(const PlainCloud& cloud, const Capture& capture, const std::string& input,
                         const std::string& version, Stream& stream) const;
+  // The same on the stream's frame as its reader filled it (Stream::frame): what detect gives
+  // for a PlainCloud of the same points.
+  PlainDetection detect_frame(const Capture& capture, const std::string& input,
+                              const std::string& version, Stream& stream) const;
 
  private:
   struct Impl;

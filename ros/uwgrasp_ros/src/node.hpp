@@ -63,7 +63,6 @@ class Node {
   std::mutex mutex_;       // guards the fields below and engine_
   std::mutex processing_;  // one detection at a time (worker or ~detect_once)
   Stream stream_;          // the frames' buffers, reused; guarded by processing_
-  PlainCloud message_;     // the message read out, its buffers reused; guarded by processing_
   std::condition_variable wake_;
   std::optional<Pending> newest_;   // not yet processed
   sensor_msgs::PointCloud2ConstPtr last_;  // the newest cloud seen, for ~detect_once

@@ -42,12 +42,12 @@ bool Node::process(const Pending& p, std::string& why) {
   CaptureFrames frames;
   try {
     frames = frames_of(h);
-    from_msg(*p.msg, message_);
+    from_msg(*p.msg, stream_);  // read straight into the frame the engine detects on
     Engine engine = [&] {
       std::lock_guard<std::mutex> lock(mutex_);
       return engine_;
     }();
-    d = engine.detect(message_, frames.capture, h.frame_id, UWGRASP_VERSION, stream_);
+    d = engine.detect_frame(frames.capture, h.frame_id, UWGRASP_VERSION, stream_);
   } catch (const tf2::TransformException& e) {
     why = std::string("tf: ") + e.what();
   } catch (const std::exception& e) {
