@@ -48,7 +48,7 @@ double time_ms(const std::function<void()>& f) {
 struct Row {
   double segments = 0, grasp = 0, kd_segments = 0;
   std::map<std::string, std::vector<double>> stages;
-  bench::Allocations seg_alloc, grasp_alloc;  // one more frame of the warm stream
+  alloc_count::Allocations seg_alloc, grasp_alloc;  // one more frame of the warm stream
 };
 
 Row run_uwgrasp(const Cloud& frame, io::Config cfg, int repeats) {
@@ -69,8 +69,8 @@ Row run_uwgrasp(const Cloud& frame, io::Config cfg, int repeats) {
     grasp.push_back(time_ms(detection));
     for (const auto& st : d.timer.stages()) row.stages[st.name].push_back(st.ms);
   }
-  row.seg_alloc = bench::count_allocations(segments);
-  row.grasp_alloc = bench::count_allocations(detection);
+  row.seg_alloc = alloc_count::count(segments);
+  row.grasp_alloc = alloc_count::count(detection);
   cfg.preprocess.organised.enabled = false;
   for (int r = 0; r < std::max(3, repeats / 4); ++r)
     kd.push_back(time_ms([&] { segment::segment_scene(frame, cfg.preprocess, cfg.segment, cfg.seed); }));

@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <functional>
 
-namespace uwgrasp::bench {
+namespace uwgrasp::alloc_count {
 
 struct Allocations {
   std::size_t calls = 0;
@@ -15,6 +15,6 @@ struct Allocations {
 };
 
 // The allocation calls and bytes asked that f makes (on any thread) while it runs.
-Allocations count_allocations(const std::function<void()>& f);
+Allocations count(const std::function<void()>& f);
 
-}  // namespace uwgrasp::bench
+}  // namespace uwgrasp::alloc_count

@@ -58,12 +58,12 @@ int posix_memalign(void** out, std::size_t align, std::size_t n) {
 void free(void* p) { __libc_free(p); }
 }
 
-namespace uwgrasp::bench {
+namespace uwgrasp::alloc_count {
 
-Allocations count_allocations(const std::function<void()>& f) {
+Allocations count(const std::function<void()>& f) {
   const std::size_t c0 = g_calls.load(), b0 = g_bytes.load();
   f();
   return {g_calls.load() - c0, g_bytes.load() - b0};
 }
 
-}  // namespace uwgrasp::bench
+}  // namespace uwgrasp::alloc_count
