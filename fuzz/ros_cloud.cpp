@@ -55,12 +55,25 @@ bool same(float a, float b) { return a == b || (std::isnan(a) && std::isnan(b));
 void ros_cloud(const std::uint8_t* data, std::size_t size) {
   Reader r{data, size};
   const sensor_msgs::PointCloud2 m = message(r);
+  // The node's path reads straight into a stream's frame (reused over inputs, as the node's is):
+  // it accepts what the PlainCloud path accepts, and writes only within the frame it sized.
+  static uwgrasp_ros::Stream stream;
+  bool into_stream = true;
+  try {
+    uwgrasp_ros::from_msg(m, stream);
+  } catch (const uwgrasp::Error&) {
+    into_stream = false;
+  }
   uwgrasp_ros::PlainCloud c;
   try {
     c = uwgrasp_ros::from_msg(m);
   } catch (const uwgrasp::Error&) {
+    if (into_stream)
+      throw std::logic_error("the stream read a message the PlainCloud read refuses");
     return;
   }
+  if (!into_stream)
+    throw std::logic_error("the stream refused a message the PlainCloud read accepts");
   if (c.size() != std::size_t(m.width) * m.height) throw std::logic_error("point count is not width x height");
   // What the node accepted, converted back to a message and read again, is the same cloud.
   const uwgrasp_ros::PlainCloud back = uwgrasp_ros::from_msg(uwgrasp_ros::to_msg(c));
