@@ -66,9 +66,7 @@ void check_layout(const sensor_msgs::PointCloud2& m) {
     throw Error("PointCloud2: data has " + std::to_string(m.data.size()) + " bytes, row_step x height needs " +
                 std::to_string(std::uint64_t(m.row_step) * m.height));
 }
-}  // namespace
 
-namespace {
 // Where x, y, z and the colours sit in each point, the message checked first.
 struct Layout {
   Field xyz[3];
