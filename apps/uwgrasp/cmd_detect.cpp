@@ -107,6 +107,24 @@ void print_best(const grasp::Grasp& g, const grasp::Frames& f, const grasp::Scor
                 g.force_closure, g.contact_seen[0] ? "seen" : "unseen", g.contact_seen[1] ? "seen" : "unseen");
 }
 
+// Why there is no grasp. When feasible candidates remain, "N feasible" above would read as a
+// contradiction of "no feasible grasp": the best-predicted all failed their robustness test.
+void print_none(const grasp::ObjectGrasps& r) {
+  const std::size_t weak = r.rejections[static_cast<int>(grasp::Reject::not_robust)];
+  std::printf("no feasible grasp");
+  if (weak > 0)
+    std::printf(
+        ": the %zu best-predicted candidates held on the object's model in too few of their "
+        "perturbed poses (not_robust)",
+        weak);
+  if (weak > 0 && r.feasible() > 0)
+    std::printf(
+        "; the %zu feasible ones ranked below them are not measured or offered "
+        "(grasp.score.robust.candidates)",
+        r.feasible());
+  std::printf("\n");
+}
+
 void print_detection(const std::string& name, const grasp::Detection& d, const io::Config& cfg,
                      const io::OutputFrame& frame) {
   const auto& r = d.result;
@@ -138,7 +156,7 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
     if (r.rejections[k]) std::printf(" %s %zu", grasp::reject_name(static_cast<grasp::Reject>(k)), r.rejections[k]);
   std::printf("\n");
   if (r.grasps.empty()) {
-    std::printf("no feasible grasp\n");
+    print_none(r);
   } else {
     print_best(r.grasps.front(), r.frames, cfg.grasp.score);
     if (frame.name != "camera_optical") {

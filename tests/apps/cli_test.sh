@@ -72,6 +72,14 @@ if [[ -f "$MUG" ]]; then
   else
     echo "FAIL: no-feasible detect run: $(cat "$T/stdout" "$T/stderr")"; fails=$((fails + 1))
   fi
+  # Feasible candidates, none robust (nothing holds at mu 0.001): the line says why, not only
+  # "no feasible grasp" under "N feasible".
+  if "$BIN" detect "$MUG" --object nearest --set grasp.score.robust.mu=0.001 >"$T/stdout" 2>"$T/stderr" &&
+     grep -q "no feasible grasp: the 40 best-predicted candidates held .* (not_robust); the [1-9][0-9]* feasible" "$T/stdout"; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL: none-robust detect run: $(cat "$T/stdout" "$T/stderr")"; fails=$((fails + 1))
+  fi
   # Same seed, same files, whatever the thread count.
   "$BIN" segment "$MUG" --threads 1 --out-dir "$T/t1" >/dev/null 2>&1
   "$BIN" segment "$MUG" --threads 2 --out-dir "$T/t2" >/dev/null 2>&1

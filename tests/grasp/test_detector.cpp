@@ -235,6 +235,14 @@ TEST(Detector, BadInputIsAClearError) {
   GraspConfig a = good;
   a.gripper.max_aperture = -0.05f;
   EXPECT_NE(message(obj.cloud, a).find("gripper.max_aperture"), std::string::npos);
+  // Robust mode offers only measured grasps: with none measured it would offer none, silently.
+  GraspConfig no_poses = good, no_candidates = good;
+  no_poses.score.robust.samples = 0;
+  no_candidates.score.robust.candidates = 0;
+  EXPECT_NE(message(obj.cloud, no_poses).find("at least 1 in robust mode"), std::string::npos);
+  EXPECT_NE(message(obj.cloud, no_candidates).find("at least 1 in robust mode"), std::string::npos);
+  no_poses.score.mode = ScoreMode::thesis;  // measures nothing: any count is fine
+  EXPECT_EQ(message(obj.cloud, no_poses), "");
   // The BVH and the occlusion map are built side by side; with both inputs bad the point's error
   // is the one raised, every time.
   Cloud holed = obj.cloud;

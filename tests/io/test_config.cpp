@@ -69,6 +69,9 @@ TEST(Config, SetOverridesApplyAfterTheFile) {
   EXPECT_NE(error_of("", {"preprocess.voxel.lef=1"}).find("unknown key 'preprocess.voxel.lef'"), std::string::npos);
   EXPECT_NE(error_of("", {"novalue"}).find("section.key=value"), std::string::npos);
   EXPECT_NE(error_of("", {"segment.region.k=-1"}).find("--set"), std::string::npos);
+  // Robust mode offers only measured grasps: measuring none would offer none, silently.
+  for (const char* zero : {"grasp.score.robust.samples=0", "grasp.score.robust.candidates=0"})
+    EXPECT_NE(error_of("", {zero}).find("is out of range [1, "), std::string::npos) << zero;
 }
 
 TEST(Config, MissingFile) {

@@ -203,6 +203,13 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   const Gripper g = make_gripper(cfg.gripper);
   check_sampler(cfg.sampler);
   check_weights(cfg.score.weights);
+  // Robust mode offers only the grasps it measured: with no pose or no candidate measured every
+  // detection would answer "no feasible grasp", however many passed the checks.
+  if (cfg.score.mode == ScoreMode::robust &&
+      (cfg.score.robust.samples == 0 || cfg.score.robust.candidates == 0))
+    throw Error(
+        "grasp.score.robust.samples and .candidates must be at least 1 in robust mode "
+        "(grasp.score.mode=thesis ranks without measuring)");
   if (cfg.score.weights.vehicle > 0.0 && !cfg.score.hold_cost)
     throw Error("grasp.score.weights.vehicle > 0 needs a vehicle model for the hold cost");
   (void)orientation_score(Eigen::Vector3d::Zero(), cfg.score.orientation);  // validates weights

@@ -87,8 +87,9 @@ void visit_score(Visitor& v, grasp::ScoreConfig& s) {
   enum_choice<SM>(v, "mode", s.mode, {{"robust", SM::robust}, {"thesis", SM::thesis}});
   v.section("robust", [&] {
     v.field("mu", s.robust.mu, 1e-3, 100.0);
-    v.field("samples", s.robust.samples, 0, 1e5);
-    v.field("candidates", s.robust.candidates, 0, 1e6);
+    // At least one of each: robust mode offers only grasps it measured (mode thesis measures none).
+    v.field("samples", s.robust.samples, 1, 1e5);
+    v.field("candidates", s.robust.candidates, 1, 1e6);
     v.field("refine", s.robust.refine, 0, 1e6);
     v.field("refine_samples", s.robust.refine_samples, 0, 1e5);
     v.field("sigma_position", s.robust.sigma_position, 0.0, 1.0);
