@@ -39,9 +39,9 @@ class CellNumbers {
     std::uint64_t key = 0;
     std::uint32_t id = kNone;
   };
-  std::vector<Slot> slots_;  // 2^(64 - shift_) of them, at most half full
+  std::vector<Slot> slots_;  // none until the first add, then a power of two, at most half full
   std::uint32_t size_ = 0;
-  int shift_ = 64;
+  int shift_ = 64;  // 64 - log2(slots_.size()) once there are slots
 
   // The slot of `k`, or the empty one where it would go. Fibonacci hashing: the product's top
   // bits, which every bit of the key reaches. Its low bits (taken, before, from bit 20 up) never
