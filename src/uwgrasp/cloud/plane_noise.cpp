@@ -1,5 +1,6 @@
 #include "uwgrasp/cloud/plane_noise.hpp"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
@@ -110,18 +111,35 @@ NoiseModel plane_noise(const Cloud& cloud, const Eigen::Vector4f& plane, float b
 
 NoiseModel plane_noise(const Cloud& cloud, const Eigen::Vector4f& plane, float band, double bin,
                        std::size_t min_points, NoiseScratch& scratch) {
-  const auto dist = [&](std::size_t i) { return std::abs(double(plane.head<3>().dot(cloud.points[i]) + plane[3])); };
+  plane_distances(cloud, plane, scratch.point_distance, scratch.point_range);
+  return plane_noise(scratch.point_distance, scratch.point_range, band, bin, min_points, scratch);
+}
+
+void plane_distances(const Cloud& cloud, const Eigen::Vector4f& plane, std::vector<float>& distance,
+                     std::vector<float>& range) {
+  distance.resize(cloud.size()), range.resize(cloud.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 4096), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Eigen::Vector3f& p = cloud.points[i];
+      distance[i] = std::abs(plane.head<3>().dot(p) + plane[3]);
+      range[i] = (p - cloud.viewpoint).norm();
+    }
+  });
+}
+
+NoiseModel plane_noise(std::span<const float> distance, std::span<const float> range, float band,
+                       double bin, std::size_t min_points, NoiseScratch& scratch) {
   // The band's points, their bins and distances in parallel, then one pass into per-bin lists
   // and the bins' medians in parallel (serially, a frame's floor took 2 ms of the plane stage).
   std::vector<std::uint32_t>& in_band = scratch.in_band;
   indices_where(
-      cloud.size(), [&](std::size_t i) { return dist(i) <= band; }, in_band);
+      distance.size(), [&](std::size_t i) { return distance[i] <= band; }, in_band);
   std::vector<long>& bin_key = scratch.bin_key;
   std::vector<double>& band_dist = scratch.distance;
   bin_key.resize(in_band.size()), band_dist.resize(in_band.size());
   tbb::parallel_for(std::size_t(0), in_band.size(), [&](std::size_t j) {
-    bin_key[j] = bin_of((cloud.points[in_band[j]] - cloud.viewpoint).norm(), bin);
-    band_dist[j] = dist(in_band[j]);
+    bin_key[j] = bin_of(range[in_band[j]], bin);
+    band_dist[j] = distance[in_band[j]];
   });
   group(bin_key, band_dist, scratch);
   scratch.work.resize(scratch.flat.size());  // the bins' medians select in their own slices

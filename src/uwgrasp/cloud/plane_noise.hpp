@@ -42,6 +42,7 @@ struct NoiseScratch {
     long key = 0;
     std::span<const double> values;
   };
+  std::vector<float> point_distance, point_range;  // plane_distances' output, per point
   std::vector<std::uint32_t> in_band;
   std::vector<long> bin_key;
   std::vector<double> distance, flat, work, sigma;
@@ -50,5 +51,14 @@ struct NoiseScratch {
 };
 NoiseModel plane_noise(const Cloud& cloud, const Eigen::Vector4f& plane, float band, double bin,
                        std::size_t min_points, NoiseScratch& scratch);
+
+// Each point's distance from `plane` and range from cloud.viewpoint, in parallel: what
+// plane_noise measures, for a caller that measures more than once and then tests the points
+// against the model (the plane stage: three passes over a frame computed them again each time).
+void plane_distances(const Cloud& cloud, const Eigen::Vector4f& plane, std::vector<float>& distance,
+                     std::vector<float>& range);
+// plane_noise from plane_distances' output.
+NoiseModel plane_noise(std::span<const float> distance, std::span<const float> range, float band,
+                       double bin, std::size_t min_points, NoiseScratch& scratch);
 
 }  // namespace uwgrasp::cloud

@@ -83,30 +83,30 @@ class CellSet {
 // is measured twice, the second time in a band wide enough for the first estimate's spread.
 void widen_to_noise(const Cloud& cur, const PlaneConfig& cfg, Preprocessed& out,
                     PlaneScratch& scratch) {
-  const Eigen::Vector4f& n = out.plane.coefficients;
+  // Each point's distance and range once, for both measurements and the band's test.
+  NoiseScratch& noise = scratch.noise;
+  plane_distances(cur, out.plane.coefficients, noise.point_distance, noise.point_range);
+  const std::vector<float>&distance = noise.point_distance, &range = noise.point_range;
   float band = std::max(3.0f * cfg.distance, 0.02f);
-  out.noise = plane_noise(cur, n, band, kNoiseBin, kNoiseMinPoints, scratch.noise);
+  out.noise = plane_noise(distance, range, band, kNoiseBin, kNoiseMinPoints, noise);
   if (!out.noise.found) return;
   // The widest noise over the inliers: the farthest inlier's (sigma0, sigma_k >= 0, so sigma
-  // never falls with range, and the square root never falls with its argument).
+  // never falls with range).
   const std::vector<std::uint32_t>& in = out.plane.inliers;
-  const float farthest2 = tbb::parallel_reduce(
+  const float farthest = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, in.size()), 0.0f,
       [&](const auto& r, float w) {
-        for (std::size_t k = r.begin(); k != r.end(); ++k)
-          w = std::max(w, (cur.points[in[k]] - cur.viewpoint).squaredNorm());
+        for (std::size_t k = r.begin(); k != r.end(); ++k) w = std::max(w, range[in[k]]);
         return w;
       },
       [](float a, float b) { return std::max(a, b); });
-  const float widest = in.empty() ? 0.0f : float(out.noise.at(std::sqrt(farthest2)));
+  const float widest = in.empty() ? 0.0f : float(out.noise.at(farthest));
   if (5.0f * widest > band)
-    out.noise = plane_noise(cur, n, 5.0f * widest, kNoiseBin, kNoiseMinPoints, scratch.noise);
+    out.noise = plane_noise(distance, range, 5.0f * widest, kNoiseBin, kNoiseMinPoints, noise);
   if (!out.noise.found) return;
   const auto inlier = [&](std::size_t i) {
-    const Eigen::Vector3f& p = cur.points[i];
-    const float d = std::abs(n.head<3>().dot(p) + n[3]);
-    if (d <= cfg.distance) return true;  // within the fixed tolerance whatever the noise
-    return d <= cfg.noise_sigmas * out.noise.at((p - cur.viewpoint).norm());
+    if (distance[i] <= cfg.distance) return true;  // within the fixed tolerance whatever the noise
+    return distance[i] <= cfg.noise_sigmas * out.noise.at(range[i]);
   };
   indices_where(cur.size(), inlier, out.plane.inliers);
 }

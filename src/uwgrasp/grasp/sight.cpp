@@ -62,15 +62,6 @@ void fill_gaps(SceneView& view, const std::vector<float>& seen) {
 }
 }  // namespace
 
-bool SurfaceCells::contains(const Eigen::Vector3f& p) const {
-  if (marked.empty()) return false;
-  const V3 q = (p - origin) / cell;
-  // floor(q) lies in [0, n) exactly when q does, and there truncation is floor (NaN: outside).
-  if (!(q.x() >= 0.0f && q.y() >= 0.0f && q.z() >= 0.0f && q.x() < float(nx) && q.y() < float(ny) && q.z() < float(nz)))
-    return false;
-  return marked[(std::size_t(q.z()) * std::size_t(ny) + std::size_t(q.y())) * std::size_t(nx) + std::size_t(q.x())] != 0;
-}
-
 SceneView make_scene_view(std::span<const Eigen::Vector3f> scene, const std::optional<Eigen::Vector4f>& floor,
                           const Pose& camera_from_level, float resolution,
                           std::span<const Eigen::Vector3f> object, float cell) {

@@ -22,7 +22,17 @@ struct SurfaceCells {
   float cell = 0.0f;
   int nx = 0, ny = 0, nz = 0;
   std::vector<std::uint8_t> marked;  // x fastest
-  bool contains(const Eigen::Vector3f& p) const;
+  // Inline: the symmetry search asks it millions of times a frame (classify_camera).
+  bool contains(const Eigen::Vector3f& p) const {
+    if (marked.empty()) return false;
+    const Eigen::Vector3f q = (p - origin) / cell;
+    // floor(q) lies in [0, n) exactly when q does, and there truncation is floor (NaN: outside).
+    if (!(q.x() >= 0.0f && q.y() >= 0.0f && q.z() >= 0.0f && q.x() < float(nx) &&
+          q.y() < float(ny) && q.z() < float(nz)))
+      return false;
+    return marked[(std::size_t(q.z()) * std::size_t(ny) + std::size_t(q.y())) * std::size_t(nx) +
+                  std::size_t(q.x())] != 0;
+  }
 };
 
 // What the camera saw: the nearest depth (camera z) of the scene's processed points per bin of
