@@ -10,6 +10,7 @@
 #include "shapes.hpp"
 #include "uwgrasp/cloud/plane_noise.hpp"
 #include "uwgrasp/cloud/preprocess.hpp"
+#include "uwgrasp/core/error.hpp"
 #include "uwgrasp/core/rng.hpp"
 
 namespace uwgrasp::cloud {
@@ -41,6 +42,28 @@ TEST(PlaneNoise, RecoversTheNoiseLawOfAFloor) {
     for (const double r : {1.2, 2.0, 3.5})  // within 10 % of the truth where the floor is seen
       EXPECT_NEAR(m.at(r), s0 + sk * r * r, 0.1 * (s0 + sk * r * r)) << "sigma0 " << s0 << " r " << r;
   }
+}
+
+// The plane stage measures twice from one pass of distances and ranges (plane_distances): the
+// same law as from the cloud, and lists of two lengths are an error, not a read past one's end.
+TEST(PlaneNoise, FromDistancesAndRangesAsFromTheCloud) {
+  const Cloud c = noisy_floor(0.0012, 0.0019, 11);
+  std::vector<float> distance, range;
+  plane_distances(c, kFloor, distance, range);
+  ASSERT_EQ(distance.size(), c.size());
+  for (const std::size_t i : {std::size_t(0), c.size() / 2, c.size() - 1}) {
+    EXPECT_FLOAT_EQ(distance[i], std::abs(kFloor.head<3>().dot(c.points[i]) + kFloor[3]));
+    EXPECT_FLOAT_EQ(range[i], (c.points[i] - c.viewpoint).norm());
+  }
+  NoiseScratch scratch;
+  const NoiseModel a = plane_noise(c, kFloor, 0.05f),
+                   b = plane_noise(distance, range, 0.05f, kNoiseBin, kNoiseMinPoints, scratch);
+  ASSERT_TRUE(a.found);
+  EXPECT_EQ(a.sigma0, b.sigma0);
+  EXPECT_EQ(a.sigma_k, b.sigma_k);
+  EXPECT_EQ(a.bins, b.bins);
+  range.pop_back();
+  EXPECT_THROW(plane_noise(distance, range, 0.05f, kNoiseBin, kNoiseMinPoints, scratch), Error);
 }
 
 TEST(PlaneNoise, NotFoundWithoutASpanOfRanges) {

@@ -9,9 +9,11 @@
 #include <cmath>
 #include <map>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "uwgrasp/cloud/indices.hpp"
+#include "uwgrasp/core/error.hpp"
 
 namespace uwgrasp::cloud {
 
@@ -129,6 +131,9 @@ void plane_distances(const Cloud& cloud, const Eigen::Vector4f& plane, std::vect
 
 NoiseModel plane_noise(std::span<const float> distance, std::span<const float> range, float band,
                        double bin, std::size_t min_points, NoiseScratch& scratch) {
+  if (distance.size() != range.size())
+    throw Error("plane_noise: " + std::to_string(distance.size()) + " distances but " +
+                std::to_string(range.size()) + " ranges");
   // The band's points, their bins and distances in parallel, then one pass into per-bin lists
   // and the bins' medians in parallel (serially, a frame's floor took 2 ms of the plane stage).
   std::vector<std::uint32_t>& in_band = scratch.in_band;
