@@ -196,8 +196,8 @@ DepthAccuracy depth_accuracy(const Cloud& got, const sim::Frame& truth, int labe
   return a;
 }
 
-Cloud sensor_input(const SensorOptions& o, const std::string& cloud_file,
-                   const camera::DenseConfig& cfg, StageTimer& timer, std::string& name) {
+SensorCloud sensor_input(const SensorOptions& o, const std::string& cloud_file,
+                         const camera::DenseConfig& cfg, StageTimer& timer, std::string& name) {
   const int inputs = int(!cloud_file.empty()) + int(!o.stereo.empty()) + int(!o.rgbd.empty());
   if (inputs != 1)
     throw Error("give exactly one input: a cloud file, --stereo LEFT RIGHT or --rgbd DEPTH RGB");
@@ -205,10 +205,10 @@ Cloud sensor_input(const SensorOptions& o, const std::string& cloud_file,
     name = o.stereo[0];
     StereoCloud s = stereo_cloud(o.stereo[0], o.stereo[1], o.calib, o.port, cfg, timer);
     std::printf("stereo: %s\n", s.summary.c_str());
-    return std::move(s.frame.cloud);
+    return {std::move(s.frame.cloud), s.frame.depth_error};
   }
   name = o.rgbd[1];
-  return rgbd_cloud(o.rgbd[0], o.rgbd[1], o.camera, timer);
+  return {rgbd_cloud(o.rgbd[0], o.rgbd[1], o.camera, timer), 0.0};
 }
 
 }  // namespace uwgrasp::app

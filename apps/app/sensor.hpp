@@ -69,8 +69,13 @@ DepthAccuracy depth_accuracy(const Cloud& got, const sim::Frame& truth, int labe
                              double max_depth);
 
 // The cloud of whichever input the options name (exactly one of a cloud file, --stereo, --rgbd);
-// `name` is set to what to call it in output.
-Cloud sensor_input(const SensorOptions& o, const std::string& cloud_file,
-                   const camera::DenseConfig& cfg, StageTimer& timer, std::string& name);
+// `name` is set to what to call it in output. A stereo pair's also gives the depth error of its
+// matcher (camera::DenseFrame::depth_error; 0 otherwise), for grasp.shape.depth_error.
+struct SensorCloud {
+  Cloud cloud;
+  double depth_error = 0.0;
+};
+SensorCloud sensor_input(const SensorOptions& o, const std::string& cloud_file,
+                         const camera::DenseConfig& cfg, StageTimer& timer, std::string& name);
 
 }  // namespace uwgrasp::app

@@ -47,13 +47,15 @@ void score_outcomes(const Setting& st, const eval::Camera& cam, const grasp::Gri
 }
 
 // The stereo sensor's cloud in place of the depth camera's (`f`, rendered ideal: the truth), and
-// its depth against that truth.
-void use_stereo(const Setting& st, const JudgedPlan& plan, std::uint64_t seed, sim::Frame& f, JudgedRun& run) {
+// its depth against that truth. Returns the matcher's depth error at 1 m (DenseFrame).
+double use_stereo(const Setting& st, const JudgedPlan& plan, std::uint64_t seed, sim::Frame& f,
+                  JudgedRun& run) {
   const sim::StereoFrame s = sim::render_stereo(st.world, st.sim.world_from_camera, st.sim.render, seed);
-  Cloud cloud = simulated_stereo(s, plan.base.stereo).cloud;
-  const DepthAccuracy a = depth_accuracy(cloud, f, sim::kLabelFirstObject + st.target, 1e9);
+  camera::DenseFrame matched = simulated_stereo(s, plan.base.stereo);
+  const DepthAccuracy a = depth_accuracy(matched.cloud, f, sim::kLabelFirstObject + st.target, 1e9);
   run.depth_error = a.median_error, run.completeness = a.completeness;
-  f.cloud = std::move(cloud);
+  f.cloud = std::move(matched.cloud);
+  return matched.depth_error;
 }
 
 JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed, JudgedCaseResult& out,
@@ -65,8 +67,10 @@ JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed
   sim::Frame f = sim::render_rgbd(st.world, st.sim.world_from_camera, depth_camera, seed);
   run.visible_points = std::size_t(
       std::count(f.labels.begin(), f.labels.end(), std::uint16_t(sim::kLabelFirstObject + st.target)));
-  if (stereo) use_stereo(st, plan, seed, f, run);
+  const double matcher_error = stereo ? use_stereo(st, plan, seed, f, run) : 0.0;
   io::Config cfg = plan.base;
+  // As detecting from a stereo pair does: the matcher's depth error floors the surface noise.
+  cfg.grasp.shape.depth_error = std::max(cfg.grasp.shape.depth_error, float(matcher_error));
   cfg.seed = seed;
   use_simulation_frames(cfg, st.sim);
   if (plan.calibrate) cfg.grasp.score.top = std::max<std::uint32_t>(cfg.grasp.score.top, 1000000);

@@ -3,14 +3,15 @@
 // (the defaults; --thesis: its Table 8.5 preset), writes grasps.json and grasps.png, and prints
 // the best grasp per object. --sensor stereo: the cloud comes from the simulated stereo pair
 // through the camera module (rectify, match, triangulate) instead of the depth camera.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
 #include "app/common.hpp"
 #include "app/sensor.hpp"
-#include "commands.hpp"
 #include "app/simulation.hpp"
+#include "commands.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/atomic_file.hpp"
 #include "uwgrasp/io/grasps_json.hpp"
@@ -78,7 +79,7 @@ cv::Mat demo_picture(const std::vector<ObjectRun>& runs, const sim::Frame& f) {
 }
 
 int run_demo(const DemoOptions& o) {
-  const Session session = open_session(o.common);
+  Session session = open_session(o.common);
   const std::uint64_t seed = session.config.seed;
   const auto t0 = std::chrono::steady_clock::now();
   // The thesis's conditions by default: clear water and a perfect sensor (7.4.1).
@@ -101,7 +102,12 @@ int run_demo(const DemoOptions& o) {
     sim::RenderConfig ideal = s.render;
     ideal.noise.enabled = false;
     const sim::Frame truth = sim::render_rgbd(world, s.world_from_camera, ideal, seed);
-    f.cloud = simulated_stereo(*pair, session.config.stereo, std::nullopt, &stereo_timer).cloud;
+    camera::DenseFrame matched =
+        simulated_stereo(*pair, session.config.stereo, std::nullopt, &stereo_timer);
+    f.cloud = std::move(matched.cloud);
+    // The matcher's depth error floors the surface noise (grasp.shape.depth_error).
+    float& depth_floor = session.config.grasp.shape.depth_error;
+    depth_floor = std::max(depth_floor, float(matched.depth_error));
     const DepthAccuracy a = depth_accuracy(f.cloud, truth, -1, 2.0);
     std::printf("stereo: rectify %.1f, match %.1f, cloud %.1f ms; depth up to 2 m: median error %.2f %%, %.1f %% of "
                 "the pixels matched\n", stereo_timer.ms("rectify"), stereo_timer.ms("match"), stereo_timer.ms("cloud"),

@@ -1,6 +1,7 @@
 // uwgrasp detect CLOUD | --stereo LEFT RIGHT --calib F | --rgbd DEPTH RGB --camera F: the full
 // pipeline (thesis ch. 3-6) on a cloud in the camera optical frame, or on the one a stereo or
 // RGB-D pair gives; prints the best grasp and per-stage times, optionally writes grasps.json.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,9 +10,9 @@
 #include "app/common.hpp"
 #include "app/frame.hpp"
 #include "app/sensor.hpp"
+#include "app/simulation.hpp"
 #include "bag_commands.hpp"
 #include "commands.hpp"
-#include "app/simulation.hpp"
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/grasps_json.hpp"
 #include "uwgrasp/io/pcd.hpp"
@@ -139,11 +140,13 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
         "preprocess.water's coefficients (preprocess.water.fallback)\n",
         cfg.segment.object.color.c_str());
   if (!r.shape.empty()) {
-    std::printf(
-        "shape: %zu seen points, surface noise %.1f mm, back mirrored about %zu symmetry "
-        "plane%s (%zu points)",
-        d.object.size(), 1e3 * r.shape.noise, r.shape.planes.size(),
-        r.shape.planes.size() == 1 ? "" : "s", r.shape.mirrored_points.size());
+    std::printf("shape: %zu seen points, surface noise %.1f mm", d.object.size(),
+                1e3 * r.shape.noise);
+    if (r.shape.sensor_noise > r.shape.measured_noise)  // grasp.shape.depth_error
+      std::printf(" (the sensor's depth error at the object's depth; its points scatter %.1f mm)",
+                  1e3 * r.shape.measured_noise);
+    std::printf(", back mirrored about %zu symmetry plane%s (%zu points)", r.shape.planes.size(),
+                r.shape.planes.size() == 1 ? "" : "s", r.shape.mirrored_points.size());
     for (const auto& p : r.shape.planes)
       std::printf(", n_L (%.3f, %.3f, %.3f) %.0f %% on the seen surface", p.normal.x(), p.normal.y(),
                   p.normal.z(), 100.0 * p.support);
@@ -222,10 +225,13 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
     if (images && (!o->frame.camera_pose.empty() || o->frame.frame == "world"))
       throw Error("--camera-pose and --frame world apply to a CLOUD file: images give a cloud in "
                   "the camera optical frame");
-    const CameraCloud in = to_camera_frame(
-        images || o->cloud.empty() ? sensor_input(o->sensor, o->cloud, cfg.stereo, sensor_timer, name)
-                                   : io::load_cloud(o->cloud),
-        o->frame, name);
+    SensorCloud sensed = images || o->cloud.empty()
+                             ? sensor_input(o->sensor, o->cloud, cfg.stereo, sensor_timer, name)
+                             : SensorCloud{io::load_cloud(o->cloud), 0.0};
+    // A stereo pair's depth is smoother than it is right: its matcher's error floors the surface
+    // noise (grasp.shape.depth_error; a cloud file's source is not known: set it for one).
+    cfg.grasp.shape.depth_error = std::max(cfg.grasp.shape.depth_error, float(sensed.depth_error));
+    const CameraCloud in = to_camera_frame(sensed.cloud, o->frame, name);
     const Cloud& input = in.cloud;
     // --object point:X,Y,Z is in the cloud's frame, like every other coordinate the user sees.
     if (o->object.rfind("point:", 0) == 0)

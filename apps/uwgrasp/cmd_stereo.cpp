@@ -96,6 +96,11 @@ int run_stereo(const StereoOptions& o) {
   print_times(timer);
   io::save_cloud(o.out, c);
   std::printf("wrote %s\n", o.out.c_str());
+  // The file does not say it came from a matcher: its depth error goes with it by hand.
+  std::printf(
+      "depth error %.2f mm at 1 m (x depth^2; stereo.disparity_sigma %.2f px): detect this "
+      "cloud with --set grasp.shape.depth_error=%.6f\n",
+      1e3 * s.frame.depth_error, session.config.stereo.disparity_sigma, s.frame.depth_error);
   if (!o.png.empty()) {
     write_png(o.png, disparity_picture(s.frame, std::filesystem::path(o.left).filename().string()));
     std::printf("wrote %s\n", o.png.c_str());

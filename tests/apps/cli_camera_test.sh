@@ -48,10 +48,12 @@ expect 2 "--calib" -- detect --stereo "$S/left.png" "$S/right.png"
 expect 2 "no such file" -- detect --stereo "$S/left.png" "$T/none.png" --calib "$S/stereo.yaml" --json "$T/out/g.json"
 if "$BIN" stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --out "$T/st.pcd" --png "$T/st.png" >"$T/st.txt" 2>&1 &&
    grep -q "cloud: 640 x 480" "$T/st.txt" && grep -q "stage times" "$T/st.txt" && [[ -s $T/st.pcd && -s $T/st.png ]] &&
+   grep -q -- "--set grasp.shape.depth_error=0.0030" "$T/st.txt" &&
    grep -q "^WIDTH 640" <(head -c 400 "$T/st.pcd") && grep -q "^HEIGHT 480" <(head -c 400 "$T/st.pcd"); then ok; else
   bad "stereo on a simulated pair: $(tail -2 "$T/st.txt")"; fi
 if "$BIN" detect --stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --json "$T/gs.json" >"$T/ds.txt" 2>&1 &&
-   grep -q "images to cloud" "$T/ds.txt" && grep -q "best grasp" "$T/ds.txt" && grep -q '"grasps"' "$T/gs.json"; then ok; else
+   grep -q "images to cloud" "$T/ds.txt" && grep -qE "^best grasp|^no feasible grasp" "$T/ds.txt" &&
+   grep -q "the sensor's depth error at the object's depth" "$T/ds.txt" && grep -q '"grasps"' "$T/gs.json"; then ok; else
   bad "detect --stereo: $(tail -2 "$T/ds.txt")"; fi
 if "$BIN" stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --sparse --detector harris --out "$T/sp.pcd" \
      --png "$T/sp.png" >"$T/sp.txt" 2>&1 && grep -q "harris keypoints" "$T/sp.txt" && [[ -s $T/sp.pcd && -s $T/sp.png ]]; then

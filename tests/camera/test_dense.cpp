@@ -95,6 +95,66 @@ TEST(DenseStereo, BehindAFlatPortPinaxKeepsTheDepthRight) {
   EXPECT_GT(with.completeness, 0.8);
 }
 
+// The depth error from the disparity error: eq. 3.25's Z = f B / d moved by a disparity error
+// sigma gives f B / (f B / Z - sigma) - Z, to first order Z^2 sigma / (f B).
+TEST(DenseStereo, DepthErrorIsTheDisparityErrorThroughEq325) {
+  StereoRig rig;
+  rig.left = {640, 480, 500, 500, 320, 240, {}};
+  rig.right = rig.left;
+  rig.T = Eigen::Vector3d(-0.1, 0, 0);
+  DenseConfig c;
+  const Rectification r = rectify(rig, c);
+  const double fB = 500.0 * 0.1;
+  EXPECT_NEAR(depth_error(r, c), c.disparity_sigma / fB, 1e-12);
+  for (const double z : {0.5, 1.0, 2.0}) {
+    const double moved = fB / (fB / z - c.disparity_sigma) - z;
+    EXPECT_NEAR(depth_error(r, c) * z * z, moved, 0.01 * moved) << z;
+  }
+  c.downscale = 2;  // matched at half size: a disparity step is two pixels
+  EXPECT_NEAR(depth_error(r, c), 2.0 * c.disparity_sigma / fB, 1e-12);
+  c = {}, c.disparity_sigma = 0.0;
+  EXPECT_EQ(depth_error(r, c), 0.0);
+  c.disparity_sigma = -0.1;
+  EXPECT_THROW(rectify(rig, c), Error);
+  c.disparity_sigma = 20.0;
+  EXPECT_THROW(rectify(rig, c), Error);
+}
+
+// The default disparity error is the matcher's own: on the thesis scene's pair, SGBM's
+// disparities against the true ones (f B / Z of the ideal depth image), median over the pixels
+// nearer than 2 m. The frame carries the depth error it gives.
+TEST(DenseStereo, DefaultDisparityErrorIsTheMatchersOwn) {
+  const sim::Scene scene = sim::builtin_scene("thesis");
+  const sim::World world(scene);
+  sim::RenderConfig cfg;
+  const Pose pose = sim::camera_pose(scene, Mount{});
+  const sim::StereoFrame s = sim::render_stereo(world, pose, cfg, 5);
+  cfg.noise.enabled = false;
+  const sim::Frame truth = sim::render_rgbd(world, pose, cfg, 5);
+  const int W = s.intrinsics.width, H = s.intrinsics.height;
+  const DenseConfig dc;
+  const Rectification r = rectify(rig_of(s), dc);
+  const DenseFrame d =
+      dense_stereo(viz::rgb_image(s.left, W, H), viz::rgb_image(s.right, W, H), r, dc);
+  const double fB = r.camera.fx * r.baseline;
+  EXPECT_DOUBLE_EQ(d.depth_error, dc.disparity_sigma / fB);
+  std::vector<double> off;
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u) {
+      const float zt = truth.cloud.points[std::size_t(v * W + u)].z();
+      const float got = d.disparity.at<float>(v, u);
+      if (std::isfinite(zt) && zt <= 2.0f && std::isfinite(got))
+        off.push_back(std::abs(got - fB / zt));
+    }
+  ASSERT_GT(off.size(), 100000u);
+  std::nth_element(off.begin(), off.begin() + long(off.size() / 2), off.end());
+  const double median = off[off.size() / 2];
+  std::printf("SGBM's median disparity error %.3f px (stereo.disparity_sigma %.2f px)\n", median,
+              dc.disparity_sigma);
+  EXPECT_GT(median, 0.5 * dc.disparity_sigma);
+  EXPECT_LT(median, 2.0 * dc.disparity_sigma);
+}
+
 TEST(DenseStereo, PointsBeyondTheRangeLimitAreNan) {
   const sim::Scene scene = sim::builtin_scene("thesis");
   const sim::World world(scene);

@@ -120,6 +120,8 @@ void check(const DenseConfig& c) {
     fail("mode", "must be sgbm, 3way or hh");
   if (!(c.port_reference > 0.0) || !std::isfinite(c.port_reference))
     fail("port_reference", "must be positive");
+  if (!(c.disparity_sigma >= 0.0) || c.disparity_sigma > 10.0)
+    fail("disparity_sigma", "must be in [0, 10] px");
 }
 
 Rectification rectify(const StereoRig& rig, const DenseConfig& cfg,
@@ -160,6 +162,11 @@ Rectification rectify(const StereoRig& rig, const DenseConfig& cfg,
   }
   disparity_range(r, cfg);
   return r;
+}
+
+double depth_error(const Rectification& rect, const DenseConfig& cfg) {
+  const double fB = rect.camera.fx * rect.baseline;
+  return fB > 0.0 ? cfg.disparity_sigma * double(cfg.downscale) / fB : 0.0;
 }
 
 DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectification& rect,
@@ -231,6 +238,7 @@ DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectifi
       }
     }
   });
+  out.depth_error = depth_error(rect, cfg);
   if (timer) timer->stop();
   return out;
 }

@@ -30,6 +30,10 @@ struct DenseConfig {
   std::string mode =
       "3way";  // "sgbm" (5 paths), "3way" (OpenCV's faster parallel variant), "hh" (8 paths)
   double port_reference = 2.0;  // m: behind a flat port, the Pinax maps are exact at this distance
+  // px: the matcher's sub-pixel disparity error. SGBM's parabola fit locks towards whole pixels
+  // (a pair shifted by 20.25 px comes back 20.06, by 20.75 px 21.0): about 0.2 px even on
+  // perfect images, and smooth over many pixels, so a cloud's local scatter does not show it.
+  double disparity_sigma = 0.2;
 };
 
 // Throws Error naming the field (stereo.*) for a value out of range.
@@ -59,7 +63,13 @@ struct DenseFrame {
   cv::Mat left_rectified;  // 8-bit, as given (grey or BGR)
   cv::Mat disparity;       // CV_32F, px; NaN where no match
   Cloud cloud;             // organised, left optical frame, colours from the left image
+  double depth_error = 0.0;  // m: the depth's sigma at 1 m (depth_error below)
 };
+
+// The depth's sigma at 1 m from the matcher's disparity error: Z = f B / d (eq. 3.25) gives
+// dZ = Z^2 dd / (f B), so at depth Z it is Z^2 times this. Matched at 1/downscale of the size,
+// a disparity step is downscale pixels.
+double depth_error(const Rectification& rect, const DenseConfig& cfg);
 
 // Throws Error naming `what` for empty images, images of different sizes or types, or a size
 // other than the rig's. With a timer, records the stages rectify, match and cloud.

@@ -118,6 +118,19 @@ void fill_unseen(Grid g, std::span<const V3> camera, const std::vector<int>& top
 
 std::size_t ObjectShape::count(Occupancy o) const { return std::size_t(std::count(cells.begin(), cells.end(), o)); }
 
+float sensor_noise(std::span<const Eigen::Vector3f> camera, float depth_error) {
+  if (!(depth_error > 0.0f) || camera.empty()) return 0.0f;
+  // The median depth of the object's points (a sample of them: the median of a few thousand is
+  // as good); the error grows with depth^2 (eq. 3.25 differentiated).
+  const std::size_t step = std::max<std::size_t>(1, camera.size() / 2048);
+  std::vector<float> z;
+  z.reserve(camera.size() / step + 1);
+  for (std::size_t i = 0; i < camera.size(); i += step) z.push_back(camera[i].z());
+  std::nth_element(z.begin(), z.begin() + std::ptrdiff_t(z.size() / 2), z.end());
+  const float depth = std::max(0.0f, z[z.size() / 2]);
+  return depth_error * depth * depth;
+}
+
 ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
                            std::span<const Eigen::Vector3f> camera, const Frames& frames,
                            const std::optional<FloorPlane>& floor, const ShapeConfig& cfg,
@@ -130,7 +143,9 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
   if (!(cfg.min_thickness >= 0.0f) || !(cfg.shadow_tolerance >= 0.0f) || !(cfg.floor_clearance >= 0.0f))
     throw Error("grasp.shape: min_thickness, shadow_tolerance and floor_clearance must be >= 0");
   ObjectShape s;
-  s.noise = surface_noise(camera, 12, 1500, trees.camera);
+  s.measured_noise = surface_noise(camera, 12, 1500, trees.camera);
+  s.sensor_noise = sensor_noise(camera, cfg.depth_error);
+  s.noise = std::max(s.measured_noise, s.sensor_noise);
   const Pose camera_from_level = frames.level_from_camera.inverse();
   std::vector<V3> mirrored, mirrored_normals;
   if (scene != nullptr && cfg.symmetry.enabled) {

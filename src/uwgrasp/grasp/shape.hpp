@@ -45,6 +45,11 @@ struct ShapeConfig {
   // noise) for the collision check: a noisy surface may lie that much deeper than its points.
   float margin_sigmas = 2.0f;
   float min_margin = 0.001f;
+  // m at 1 m depth, growing with depth^2: the sensor's own depth error where its cloud looks
+  // smoother than it is right (a stereo rig's sub-pixel disparity error, camera::depth_error;
+  // detecting from a stereo pair sets it). The surface noise is taken as at least this at the
+  // object's median depth. 0: the measured noise alone (a depth camera's scatter shows its error).
+  float depth_error = 0.0f;
   SymmetryConfig symmetry;  // the back from the object's mirror symmetry (needs the scene's view)
 };
 
@@ -63,7 +68,9 @@ struct ObjectShape {
   // The mirrored back (one point per voxel, L, with the seen normals mirrored) and its planes.
   std::vector<Eigen::Vector3f> mirrored_points, mirrored_normals;
   std::vector<MirrorPlane> planes;
-  float noise = 0.0f;  // the surface's measured noise (sigma, m), see surface_noise
+  float noise = 0.0f;           // the surface's noise (sigma, m): the larger of the two below
+  float measured_noise = 0.0f;  // the scatter of the seen points, see surface_noise
+  float sensor_noise = 0.0f;    // ShapeConfig::depth_error at the object's median depth
 
   bool empty() const { return cells.empty(); }
   // The voxel p_level falls in (possibly outside the grid): floor(q + 1/2), not lround, which
@@ -130,6 +137,10 @@ float extent_along(const ObjectShape& shape, const Eigen::Vector3f& p, const Eig
 // first - 1 when none is: the sampler's palm back-off scans its lines with it, four points a go.
 int last_occupied(const ObjectShape& shape, const Eigen::Vector3f& base, const Eigen::Vector3f& u,
                   float step, int first, int last);
+
+// The sensor's depth error at the median depth of the object's points (camera frame, z along
+// the optical axis): depth_error z^2 (ShapeConfig::depth_error); 0 when depth_error is 0.
+float sensor_noise(std::span<const Eigen::Vector3f> camera, float depth_error);
 
 // The surface's noise: the median RMS distance of a point's k nearest neighbours from their
 // least-squares plane (on up to `samples` points). 0 for fewer than k points. `tree`, when

@@ -65,6 +65,7 @@ void visit_shape(Visitor& v, grasp::ShapeConfig& s) {
   v.field("resolution", s.resolution, 1e-4, 0.1);
   v.field("margin_sigmas", s.margin_sigmas, 0.0, 100.0);
   v.field("min_margin", s.min_margin, 0.0, 0.1);
+  v.field("depth_error", s.depth_error, 0.0, 1.0);
   v.section("symmetry", [&] {
     grasp::SymmetryConfig& m = s.symmetry;
     v.field("enabled", m.enabled);

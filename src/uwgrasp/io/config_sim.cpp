@@ -39,6 +39,7 @@ void visit_stereo(Visitor& v, camera::DenseConfig& c) {
   v.field("downscale", c.downscale, 1, 4);
   v.choice("mode", c.mode, {"3way", "sgbm", "hh"});
   v.field("port_reference", c.port_reference, 1e-3, 1000.0);
+  v.field("disparity_sigma", c.disparity_sigma, 0.0, 10.0);
 }
 
 }  // namespace uwgrasp::io
