@@ -225,13 +225,20 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
     if (images && (!o->frame.camera_pose.empty() || o->frame.frame == "world"))
       throw Error("--camera-pose and --frame world apply to a CLOUD file: images give a cloud in "
                   "the camera optical frame");
-    SensorCloud sensed = images || o->cloud.empty()
-                             ? sensor_input(o->sensor, o->cloud, cfg.stereo, sensor_timer, name)
-                             : SensorCloud{io::load_cloud(o->cloud), 0.0};
-    // A stereo pair's depth is smoother than it is right: its matcher's error floors the surface
-    // noise (grasp.shape.depth_error; a cloud file's source is not known: set it for one).
-    cfg.grasp.shape.depth_error = std::max(cfg.grasp.shape.depth_error, float(sensed.depth_error));
-    const CameraCloud in = to_camera_frame(sensed.cloud, o->frame, name);
+    // The sensor's cloud lives only until it is in the camera frame (not a second frame for the
+    // whole detection). A stereo pair's depth is smoother than it is right: its matcher's error
+    // floors the surface noise (grasp.shape.depth_error; a cloud file's source is not known: set
+    // it for one).
+    double sensed_error = 0.0;
+    const CameraCloud in = [&] {
+      const SensorCloud sensed =
+          images || o->cloud.empty()
+              ? sensor_input(o->sensor, o->cloud, cfg.stereo, sensor_timer, name)
+              : SensorCloud{io::load_cloud(o->cloud), 0.0};
+      sensed_error = sensed.depth_error;
+      return to_camera_frame(sensed.cloud, o->frame, name);
+    }();
+    cfg.grasp.shape.depth_error = std::max(cfg.grasp.shape.depth_error, float(sensed_error));
     const Cloud& input = in.cloud;
     // --object point:X,Y,Z is in the cloud's frame, like every other coordinate the user sees.
     if (o->object.rfind("point:", 0) == 0)
