@@ -211,4 +211,8 @@ SensorCloud sensor_input(const SensorOptions& o, const std::string& cloud_file,
   return {rgbd_cloud(o.rgbd[0], o.rgbd[1], o.camera, timer), 0.0};
 }
 
+void use_matcher_error(grasp::ShapeConfig& shape, double depth_error) {
+  shape.depth_error = std::max(shape.depth_error, float(depth_error));
+}
+
 }  // namespace uwgrasp::app

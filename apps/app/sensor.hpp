@@ -11,6 +11,7 @@
 #include "uwgrasp/camera/sparse.hpp"
 #include "uwgrasp/core/cloud.hpp"
 #include "uwgrasp/core/timer.hpp"
+#include "uwgrasp/grasp/shape.hpp"
 #include "uwgrasp/sim/render.hpp"
 
 namespace uwgrasp::app {
@@ -77,5 +78,10 @@ struct SensorCloud {
 };
 SensorCloud sensor_input(const SensorOptions& o, const std::string& cloud_file,
                          const camera::DenseConfig& cfg, StageTimer& timer, std::string& name);
+
+// A stereo matcher's cloud is smoother than it is right: its depth error (m at 1 m,
+// camera::DenseFrame::depth_error; 0 for other sensors) floors the surface noise, unless the
+// config already asks for more (grasp.shape.depth_error).
+void use_matcher_error(grasp::ShapeConfig& shape, double depth_error);
 
 }  // namespace uwgrasp::app

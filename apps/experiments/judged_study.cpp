@@ -69,8 +69,7 @@ JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed
       std::count(f.labels.begin(), f.labels.end(), std::uint16_t(sim::kLabelFirstObject + st.target)));
   const double matcher_error = stereo ? use_stereo(st, plan, seed, f, run) : 0.0;
   io::Config cfg = plan.base;
-  // As detecting from a stereo pair does: the matcher's depth error floors the surface noise.
-  cfg.grasp.shape.depth_error = std::max(cfg.grasp.shape.depth_error, float(matcher_error));
+  use_matcher_error(cfg.grasp.shape, matcher_error);  // as detecting from a stereo pair does
   cfg.seed = seed;
   use_simulation_frames(cfg, st.sim);
   if (plan.calibrate) cfg.grasp.score.top = std::max<std::uint32_t>(cfg.grasp.score.top, 1000000);

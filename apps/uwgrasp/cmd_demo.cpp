@@ -3,7 +3,6 @@
 // (the defaults; --thesis: its Table 8.5 preset), writes grasps.json and grasps.png, and prints
 // the best grasp per object. --sensor stereo: the cloud comes from the simulated stereo pair
 // through the camera module (rectify, match, triangulate) instead of the depth camera.
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -105,9 +104,7 @@ int run_demo(const DemoOptions& o) {
     camera::DenseFrame matched =
         simulated_stereo(*pair, session.config.stereo, std::nullopt, &stereo_timer);
     f.cloud = std::move(matched.cloud);
-    // The matcher's depth error floors the surface noise (grasp.shape.depth_error).
-    float& depth_floor = session.config.grasp.shape.depth_error;
-    depth_floor = std::max(depth_floor, float(matched.depth_error));
+    use_matcher_error(session.config.grasp.shape, matched.depth_error);
     const DepthAccuracy a = depth_accuracy(f.cloud, truth, -1, 2.0);
     std::printf("stereo: rectify %.1f, match %.1f, cloud %.1f ms; depth up to 2 m: median error %.2f %%, %.1f %% of "
                 "the pixels matched\n", stereo_timer.ms("rectify"), stereo_timer.ms("match"), stereo_timer.ms("cloud"),

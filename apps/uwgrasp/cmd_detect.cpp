@@ -1,7 +1,6 @@
 // uwgrasp detect CLOUD | --stereo LEFT RIGHT --calib F | --rgbd DEPTH RGB --camera F: the full
 // pipeline (thesis ch. 3-6) on a cloud in the camera optical frame, or on the one a stereo or
 // RGB-D pair gives; prints the best grasp and per-stage times, optionally writes grasps.json.
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -238,7 +237,7 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
       sensed_error = sensed.depth_error;
       return to_camera_frame(sensed.cloud, o->frame, name);
     }();
-    cfg.grasp.shape.depth_error = std::max(cfg.grasp.shape.depth_error, float(sensed_error));
+    use_matcher_error(cfg.grasp.shape, sensed_error);
     const Cloud& input = in.cloud;
     // --object point:X,Y,Z is in the cloud's frame, like every other coordinate the user sees.
     if (o->object.rfind("point:", 0) == 0)
