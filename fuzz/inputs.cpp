@@ -4,11 +4,15 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>  // the IMREAD_ flags only
+#include <optional>
 
 #include "uwgrasp/core/error.hpp"
 #include "uwgrasp/io/pcd.hpp"
+#include "uwgrasp/viz/png_codec.hpp"
 
 namespace uwgrasp::fuzz {
 
@@ -80,14 +84,33 @@ std::string scratch_file(Bytes in, const std::string& ext) {
   return p.string();
 }
 
+// Read with each flag uwgrasp reads images with; an image read must write and read back the same.
+void png(Bytes in) {
+  const std::string path = scratch_file(in, ".png");
+  for (const int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_ANYDEPTH, cv::IMREAD_GRAYSCALE}) {
+    const std::optional<cv::Mat> m = viz::png_detail::decode(path, flags);
+    if (!m) continue;
+    std::vector<std::uint8_t> bytes;
+    if (!viz::png_detail::encode(*m, bytes))
+      throw Invariant("an image read from a PNG does not write");
+    const std::optional<cv::Mat> back =
+        viz::png_detail::decode(scratch_file(bytes, ".back.png"), cv::IMREAD_UNCHANGED);
+    if (!back || back->type() != m->type() || back->size() != m->size())
+      throw Invariant("an image written back reads with another type or size");
+    for (int v = 0; v < m->rows; ++v)
+      if (std::memcmp(back->ptr(v), m->ptr(v), m->cols * m->elemSize()) != 0)
+        throw Invariant("an image written back reads with other pixels");
+  }
+}
+
 void pcd(Bytes in) { cloud_file(in, ".pcd"); }
 void ply(Bytes in) { cloud_file(in, ".ply"); }
 
 const std::vector<Target>& targets() {
   static const std::vector<Target> all = {
-      {"pcd", pcd},       {"ply", ply},   {"config", config},
-      {"scene", scene},   {"truth", truth}, {"grasps_json", grasps_json},
-      {"camera", camera}, {"stereo", stereo},
+      {"pcd", pcd},       {"ply", ply},       {"config", config},
+      {"scene", scene},   {"truth", truth},   {"grasps_json", grasps_json},
+      {"camera", camera}, {"stereo", stereo}, {"png", png},
   };
   return all;
 }

@@ -28,6 +28,7 @@ void truth(Bytes in);        // truth.yaml as `evaluate` reads it
 void grasps_json(Bytes in);  // grasps.json as `evaluate` and `approach` read it
 void camera(Bytes in);       // camera calibration, YAML or (starting with '<') XML
 void stereo(Bytes in);       // stereo rig calibration, YAML or XML
+void png(Bytes in);          // a PNG file read as depth and stereo images are, then a round trip
 
 struct Target {
   const char* name;

@@ -10,7 +10,7 @@ PACKAGES=(
   libeigen3-dev libnanoflann-dev libtbb-dev
   # io, viz, camera, sim
   libpcl-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
-  libopencv-dev libembree-dev libassimp-dev
+  libopencv-dev libpng-dev libembree-dev libassimp-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # ROS 1 node (optional at build time, UWGRASP_BUILD_ROS)

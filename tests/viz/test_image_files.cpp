@@ -68,14 +68,36 @@ TEST(ImageFiles, BadFilesAreNamed) {
                uwgrasp::Error);
 }
 
-// The point of the module: this test program reads and writes images without OpenCV's codecs
-// (and their hundred-odd libraries) among the libraries it was started with.
-TEST(ImageFiles, CodecsAreNotLinkedIntoThePrograms) {
+std::string mapped_libraries() {
   std::ifstream maps("/proc/self/maps");
-  ASSERT_TRUE(maps.good());
-  (void)uwgrasp::viz::encode_png(cv::Mat(2, 2, CV_8UC3, cv::Scalar::all(7)));  // loads the module
   std::string line, all;
   while (std::getline(maps, line)) all += line + "\n";
+  return all;
+}
+
+// The point of the module: this test program reads and writes images without OpenCV's codecs
+// (and their hundred-odd libraries) among the libraries it was started with, and PNGs (the
+// pictures, the simulator's frames, depth and stereo images) without loading them at all.
+TEST(ImageFiles, CodecsAreNotLinkedIntoThePrograms) {
+  ASSERT_TRUE(std::ifstream("/proc/self/maps").good());
+  // ctest runs each test in a process of its own; run together, an earlier test may have loaded it.
+  const bool loaded_before = mapped_libraries().find("libopencv_imgcodecs") != std::string::npos;
+  cv::Mat colour(8, 8, CV_8UC3, cv::Scalar::all(7)), depth(8, 8, CV_16UC1, cv::Scalar(1234));
+  const auto a = temp("plain.png"), b = temp("plain_depth.png");
+  write(a, uwgrasp::viz::encode_png(colour));
+  write(b, uwgrasp::viz::encode_image(depth, ".png"));
+  EXPECT_EQ(
+      cv::norm(uwgrasp::viz::read_image(a.string(), cv::IMREAD_UNCHANGED), colour, cv::NORM_INF),
+      0.0);
+  EXPECT_EQ(
+      cv::norm(uwgrasp::viz::read_image(b.string(), cv::IMREAD_ANYDEPTH), depth, cv::NORM_INF),
+      0.0);
+  std::filesystem::remove(a), std::filesystem::remove(b);
+  if (!loaded_before) {
+    EXPECT_EQ(mapped_libraries().find("libopencv_imgcodecs"), std::string::npos);
+  }
+  (void)uwgrasp::viz::encode_image(colour, ".jpg");  // loads the module
+  const std::string all = mapped_libraries();
   EXPECT_NE(all.find("libuwgrasp_imagecodecs.so"), std::string::npos);
   EXPECT_NE(all.find("libopencv_imgcodecs"), std::string::npos);  // through the module
   // and not through the program's own dependencies:

@@ -4,9 +4,12 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <system_error>
+#include <utility>
 
 #include "uwgrasp/core/error.hpp"
+#include "uwgrasp/viz/png_codec.hpp"
 
 namespace uwgrasp::viz {
 
@@ -60,6 +63,7 @@ const Codecs& codecs() {
 cv::Mat read_image(const std::string& path, int flags) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": no such file");
+  if (std::optional<cv::Mat> png = png_detail::decode(path, flags)) return std::move(*png);
   cv::Mat m;
   if (codecs().read(path.c_str(), flags, &m) != 0 || m.empty())
     throw Error(path + ": cannot read the image (not an image OpenCV reads, or truncated)");
@@ -68,6 +72,7 @@ cv::Mat read_image(const std::string& path, int flags) {
 
 std::vector<std::uint8_t> encode_image(const cv::Mat& image, const std::string& extension) {
   std::vector<unsigned char> out;
+  if (extension == ".png" && png_detail::encode(image, out)) return out;
   if (image.empty() || codecs().encode(extension.c_str(), &image, &out) != 0)
     throw Error("cannot encode a " + extension + " image");
   return out;

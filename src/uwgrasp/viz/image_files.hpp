@@ -5,7 +5,8 @@
 // 129 ms with it, 35 ms without), though most runs never touch an image. The codecs sit in a
 // module of the project's own, libuwgrasp_imagecodecs.so, looked for in UWGRASP_MODULE_DIR (when
 // set), then in ../lib/uwgrasp beside the running program (the build tree's layout), then in the
-// installed library directory.
+// installed library directory. PNG files of the plain kinds (png_codec.hpp) are read and written
+// through libpng without it.
 #include <opencv2/core.hpp>
 #include <cstdint>
 #include <string>
