@@ -55,6 +55,27 @@ if "$BIN" detect --stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" 
    grep -q "images to cloud" "$T/ds.txt" && grep -qE "^best grasp|^no feasible grasp" "$T/ds.txt" &&
    grep -q "the sensor's depth error at the object's depth" "$T/ds.txt" && grep -q '"grasps"' "$T/gs.json"; then ok; else
   bad "detect --stereo: $(tail -2 "$T/ds.txt")"; fi
+# The issue's memory limit for one 640 x 480 detection (UWGRASP_RSS_LIMIT_MB, unset under the
+# sanitizers), with its picture: loading OpenCV's codecs for the images once took this to 151 MB.
+peak_mb() {
+  python3 - "$@" <<'PY'
+import resource, subprocess, sys
+code = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
+print(code, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss // 1024)
+PY
+}
+if [[ -n ${UWGRASP_RSS_LIMIT_MB:-} ]]; then
+  read -r code mb < <(peak_mb "$BIN" detect --stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" \
+    --json "$T/gm.json" --png "$T/gm.png")
+  if [[ $code -eq 0 && $mb -le $UWGRASP_RSS_LIMIT_MB ]]; then ok; else
+    bad "detect --stereo --png: exit $code, peak resident set $mb MB (limit $UWGRASP_RSS_LIMIT_MB)"; fi
+  if [[ -f "$DATA/clouds/table_scene_mug_stereo_textured.pcd" ]]; then
+    read -r code mb < <(peak_mb "$BIN" detect "$DATA/clouds/table_scene_mug_stereo_textured.pcd" --object largest \
+      --json "$T/gm.json" --png "$T/gm.png")
+    if [[ $code -eq 0 && $mb -le $UWGRASP_RSS_LIMIT_MB ]]; then ok; else
+      bad "detect on the mug frame --png: exit $code, peak resident set $mb MB (limit $UWGRASP_RSS_LIMIT_MB)"; fi
+  fi
+fi
 if "$BIN" stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --sparse --detector harris --out "$T/sp.pcd" \
      --png "$T/sp.png" >"$T/sp.txt" 2>&1 && grep -q "harris keypoints" "$T/sp.txt" && [[ -s $T/sp.pcd && -s $T/sp.png ]]; then
   ok; else bad "stereo --sparse: $(tail -2 "$T/sp.txt")"; fi
