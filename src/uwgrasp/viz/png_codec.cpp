@@ -7,7 +7,6 @@
 #include <csetjmp>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <new>
 #include <opencv2/imgcodecs.hpp>  // the IMREAD_ flags only
 #include <system_error>
@@ -156,8 +155,9 @@ std::optional<cv::Mat> decode(const std::string& path, int flags) {
   if (type < 0 || h.width == 0 || h.height == 0 ||
       double(h.width) * double(h.height) > double(1 << 30))
     return std::nullopt;
-  // A header that asks for more pixels than the file could hold (deflate packs at most ~1032
-  // bytes into one) belongs to a truncated or hostile file: not worth a frame-sized allocation.
+  // A header that asks for more pixels than the file could hold (deflate turns one byte of file
+  // into at most ~1032 of image) belongs to a truncated or hostile file: not worth a frame-sized
+  // allocation.
   std::error_code ec;
   const double file = double(std::filesystem::file_size(path, ec));
   const double raw = double(h.height) * (1.0 + double(h.width) * double(CV_ELEM_SIZE(type)));
