@@ -43,6 +43,10 @@ void object_overrides(const std::string& o, std::vector<std::string>& sets) {
 
 double deg(double rad) { return rad * 180.0 / std::numbers::pi; }
 
+// A seafloor this far from the configured level is worth a line: more than a seafloor's own
+// slope usually is, as a camera pitched at a table with no attitude given puts it.
+constexpr double kHintTilt = 0.2618;  // rad, 15 degrees
+
 cv::Mat detection_picture(const Cloud& input, const grasp::Detection& d, const io::Config& cfg,
                           const std::string& name) {
   const auto& r = d.result;
@@ -123,6 +127,32 @@ void print_none(const grasp::ObjectGrasps& r) {
         "(grasp.score.robust.candidates)",
         r.feasible());
   std::printf("\n");
+}
+
+// The attitude the grasps were found in, when it came from the seafloor plane; a hint when the
+// plane is far from the level the configuration gives (a frame with no attitude given).
+void print_level(const grasp::Detection& d, const grasp::FrameConfig& f) {
+  const auto& plane = d.scene.pre.plane;
+  if (f.level_from_floor) {
+    if (d.floor_attitude)
+      std::printf(
+          "level: roll %.1f, pitch %.1f deg from the seafloor plane "
+          "(grasp.frames.level_from_floor)\n",
+          deg(d.floor_attitude->roll), deg(d.floor_attitude->pitch));
+    else
+      std::printf(
+          "level: no seafloor plane within %.0f deg of the configured level; capture_roll/pitch as "
+          "configured\n",
+          deg(grasp::kMaxFloorTilt));
+    return;
+  }
+  const auto tilt = plane.found ? grasp::floor_tilt(plane.coefficients, f) : std::nullopt;
+  if (tilt && *tilt > kHintTilt && *tilt <= grasp::kMaxFloorTilt)
+    std::printf(
+        "level: the seafloor plane is %.0f deg from level as configured (capture_roll/pitch, the "
+        "camera's "
+        "mount); a frame with no attitude: --set grasp.frames.level_from_floor=true\n",
+        deg(*tilt));
 }
 
 void print_detection(const std::string& name, const grasp::Detection& d, const io::Config& cfg,
@@ -252,6 +282,7 @@ void add_detect_command(CLI::App& app, std::vector<std::pair<CLI::App*, Runner>>
         name, [&] { return grasp::detect(input, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed); });
     std::printf("path: %s\nframe: %s\n", cloud::path_summary(input, cfg.preprocess).c_str(),
                 in.summary.c_str());
+    print_level(d, cfg.grasp.frames);
     print_detection(name, d, cfg, in.frame);
     if (!o->json.empty()) {
       io::write_json(o->json, io::grasps_to_json(d, cfg, name, UWGRASP_VERSION, in.frame));

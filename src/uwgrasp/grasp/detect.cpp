@@ -133,7 +133,17 @@ void detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   std::fill_n(d.rests.begin(), d.scene.pre.cloud.size(), char(1));
   for (const std::uint32_t i : object) d.rests[i] = 0;
   around.rests = d.rests;
-  d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);
+  d.floor_attitude.reset();
+  if (cfg.frames.level_from_floor && d.scene.pre.plane.found)
+    d.floor_attitude = attitude_from_floor(d.scene.pre.plane.coefficients, cfg.frames);
+  if (!d.floor_attitude) {
+    d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);
+    return;
+  }
+  GraspConfig levelled = cfg;
+  levelled.frames.capture_roll = d.floor_attitude->roll,
+  levelled.frames.capture_pitch = d.floor_attitude->pitch;
+  d.result = find_grasps(d.object, levelled, leaf, seed, d.timer, &around);
 }
 
 Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,

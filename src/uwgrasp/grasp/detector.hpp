@@ -59,6 +59,9 @@ struct Detection {
   // Whether the object was selected by colours restored as a fallback (preprocess.water.fallback):
   // no object had the colour as the camera saw it.
   bool restored_colours = false;
+  // The capture attitude taken from the seafloor plane (FrameConfig::level_from_floor), when it
+  // was asked for and a plane near enough to level was found; the result's frames use it.
+  std::optional<Attitude> floor_attitude;
   Cloud object;             // its points, camera frame
   ObjectGrasps result;
   StageTimer timer;         // every stage, preprocessing to ranking

@@ -1,5 +1,7 @@
 #include "uwgrasp/grasp/frames.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "uwgrasp/core/error.hpp"
@@ -23,6 +25,37 @@ Frames make_frames(const FrameConfig& cfg) {
       level_from_body(cfg.capture_roll, cfg.capture_pitch) * body_from_camera(cfg.camera);
   f.body_from_gripper = mount_pose(cfg.gripper);
   return f;
+}
+
+namespace {
+// The plane's downward direction (away from the camera's side) in B; nullopt for a plane with no
+// normal or through the camera.
+std::optional<Eigen::Vector3d> floor_down(const Eigen::Vector4f& plane, const FrameConfig& cfg) {
+  const Eigen::Vector3d n = plane.head<3>().cast<double>();
+  const double norm = n.norm(), d = double(plane[3]);
+  if (!(norm > 0.0) || !std::isfinite(norm) || !std::isfinite(d) || d == 0.0) return std::nullopt;
+  // The camera (the origin) is on the side of d's sign: down is the normal away from it.
+  const Eigen::Vector3d down_camera = (d > 0.0 ? -n : n) / norm;
+  return body_from_camera(cfg.camera).linear() * down_camera;
+}
+}  // namespace
+
+std::optional<double> floor_tilt(const Eigen::Vector4f& plane, const FrameConfig& cfg) {
+  const auto down = floor_down(plane, cfg);
+  if (!down) return std::nullopt;
+  const Eigen::Vector3d level =
+      level_from_body(cfg.capture_roll, cfg.capture_pitch).linear() * *down;
+  return std::acos(std::clamp(level.z(), -1.0, 1.0));
+}
+
+std::optional<Attitude> attitude_from_floor(const Eigen::Vector4f& plane, const FrameConfig& cfg,
+                                            double max_tilt) {
+  const auto down = floor_down(plane, cfg);
+  const auto tilt = floor_tilt(plane, cfg);
+  if (!down || !tilt || *tilt > max_tilt) return std::nullopt;
+  // Fossen's gravity in the body frame, (-sin pitch, cos pitch sin roll, cos pitch cos roll),
+  // solved for roll and pitch.
+  return Attitude{std::atan2(down->y(), down->z()), std::asin(std::clamp(-down->x(), -1.0, 1.0))};
 }
 
 std::vector<Eigen::Vector3f> points_to_level(std::span<const Eigen::Vector3f> camera, const Frames& f) {

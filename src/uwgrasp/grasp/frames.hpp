@@ -3,6 +3,7 @@
 // level L (origin and heading of B at capture, roll = pitch = 0) and gripper G. Candidates are
 // sampled and scored in L; results are reported in C and L.
 #include <Eigen/Core>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -23,7 +24,31 @@ struct FrameConfig {
   Mount gripper{Eigen::Vector3d(0.40, 0.0, 0.17), Eigen::Vector3d::Zero()};
   double capture_roll = 0.0;   // vehicle attitude when the cloud was captured (IMU), rad
   double capture_pitch = 0.0;
+  // Roll and pitch from the seafloor (support) plane that preprocessing found, taken as level,
+  // in place of capture_roll/pitch: for a frame that comes with no attitude (a cloud file from a
+  // tabletop or hand-held camera). Off: capture_roll/pitch as given (the IMU's, on a vehicle).
+  bool level_from_floor = false;
 };
+
+// A support plane whose normal is further than this from the configured vertical is taken for a
+// wall, not the floor, by level_from_floor (a camera pitched 37 degrees down at a table sees the
+// table 37 degrees from a level camera's vertical; a wall is 90 degrees from it).
+inline constexpr double kMaxFloorTilt = 1.0472;  // rad, 60 degrees
+
+struct Attitude {
+  double roll = 0.0, pitch = 0.0;  // rad, as capture_roll/pitch
+};
+
+// The angle between `plane`'s normal (camera frame, n.p + d = 0) and the vertical of cfg's own
+// attitude, rad; nullopt for a plane with no normal or through the camera.
+std::optional<double> floor_tilt(const Eigen::Vector4f& plane, const FrameConfig& cfg);
+
+// The capture roll and pitch that make `plane` (camera frame, n.p + d = 0, as the plane stage
+// gives it) level, with its camera side up: L's z along the plane's normal, away from the
+// camera, through cfg.camera's mount. nullopt for a plane with no normal or through the camera,
+// or one more than max_tilt from the vertical of cfg's own attitude.
+std::optional<Attitude> attitude_from_floor(const Eigen::Vector4f& plane, const FrameConfig& cfg,
+                                            double max_tilt = kMaxFloorTilt);
 
 struct Frames {
   Pose level_from_camera;   // T_LC = T_LB(capture) * T_BC

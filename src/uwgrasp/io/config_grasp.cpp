@@ -35,6 +35,7 @@ void visit_frames(Visitor& v, grasp::FrameConfig& f) {
   visit_mount(v, "gripper", f.gripper);
   v.field("capture_roll", f.capture_roll, -kPi, kPi);
   v.field("capture_pitch", f.capture_pitch, -kPi / 2, kPi / 2);
+  v.field("level_from_floor", f.level_from_floor);
 }
 
 void visit_sampler(Visitor& v, grasp::SamplerConfig& s) {
