@@ -149,9 +149,8 @@ void print_level(const grasp::Detection& d, const grasp::FrameConfig& f) {
   const auto tilt = plane.found ? grasp::floor_tilt(plane.coefficients, f) : std::nullopt;
   if (tilt && *tilt > kHintTilt && *tilt <= grasp::kMaxFloorTilt)
     std::printf(
-        "level: the seafloor plane is %.0f deg from level as configured (capture_roll/pitch, the "
-        "camera's "
-        "mount); a frame with no attitude: --set grasp.frames.level_from_floor=true\n",
+        "level: the seafloor plane is %.0f deg from level as configured (capture_roll/pitch, "
+        "the camera's mount); a frame with no attitude: --set grasp.frames.level_from_floor=true\n",
         deg(*tilt));
 }
 

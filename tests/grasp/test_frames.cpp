@@ -11,6 +11,7 @@
 #include "uwgrasp/grasp/detector.hpp"
 #include "uwgrasp/grasp/frames.hpp"
 #include "uwgrasp/io/config.hpp"
+#include "uwgrasp/io/grasps_json.hpp"
 #include "uwgrasp/sim/render.hpp"
 #include "uwgrasp/sim/scene.hpp"
 
@@ -101,6 +102,12 @@ TEST(FloorAttitude, ADetectionFindsThePitchOfTheCameraThatSawIt) {
   const Eigen::Matrix3d want = grasp::make_frames(right).level_from_camera.linear();
   const Eigen::Matrix3d got = d.result.frames.level_from_camera.linear();
   EXPECT_LT(Eigen::AngleAxisd(want.transpose() * got).angle(), 1.0 * kDeg);
+  // grasps.json's config is the one the grasps were found with.
+  const nlohmann::json j = io::grasps_to_json(d, cfg, "frame.pcd", "test");
+  EXPECT_DOUBLE_EQ(j["config"]["grasp"]["frames"]["capture_pitch"].get<double>(),
+                   d.floor_attitude->pitch);
+  EXPECT_DOUBLE_EQ(j["config"]["grasp"]["frames"]["capture_roll"].get<double>(),
+                   d.floor_attitude->roll);
   // Off, the same frame is taken as level: its L is the pitch away from the truth.
   cfg.grasp.frames.level_from_floor = false;
   const grasp::Detection as_given = grasp::detect(frame, cfg.preprocess, cfg.segment, cfg.grasp, 1);

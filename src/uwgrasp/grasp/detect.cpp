@@ -141,7 +141,7 @@ void detect(const Cloud& input, const cloud::PreprocessConfig& pre,
     return;
   }
   GraspConfig levelled = cfg;
-  levelled.frames.capture_roll = d.floor_attitude->roll,
+  levelled.frames.capture_roll = d.floor_attitude->roll;
   levelled.frames.capture_pitch = d.floor_attitude->pitch;
   d.result = find_grasps(d.object, levelled, leaf, seed, d.timer, &around);
 }

@@ -85,9 +85,10 @@ json grasps_to_json(const grasp::Detection& d, const Config& cfg, const std::str
   }
   j["seed"] = cfg.seed;
   Config effective = cfg;  // with the attitude the grasps were found in (level_from_floor)
-  if (d.floor_attitude)
-    effective.grasp.frames.capture_roll = d.floor_attitude->roll,
+  if (d.floor_attitude) {
+    effective.grasp.frames.capture_roll = d.floor_attitude->roll;
     effective.grasp.frames.capture_pitch = d.floor_attitude->pitch;
+  }
   j["config"] = to_json(effective);
   json rejected = json::object();
   for (int k = 1; k < grasp::kRejectKinds; ++k)
