@@ -151,6 +151,10 @@ void check_pcd(const std::string& path) {
   check_fields(path, h, point_size);
   const std::size_t width = single(path, h, "WIDTH"), height = single(path, h, "HEIGHT");
   const std::size_t points = single(path, h, "POINTS");
+  // HEIGHT 0 with a WIDTH is no layout (PCL writes 1 for an unorganised cloud): its 0 points
+  // would pass WIDTH * HEIGHT == POINTS and leave a cloud whose layout claims WIDTH points.
+  if (height == 0 && width != 0)
+    bad(path, "HEIGHT 0 with WIDTH " + std::to_string(width) + " (1 for an unorganised cloud)");
   if ((height != 0 && width > points / height + 1) || width * height != points)
     bad(path, "WIDTH * HEIGHT != POINTS");
   if (points > 0xffffffffULL) bad(path, "POINTS " + std::to_string(points) + " is beyond 2^32 - 1");
