@@ -64,16 +64,19 @@ code = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess
 print(code, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss // 1024)
 PY
 }
-if [[ -n ${UWGRASP_RSS_LIMIT_MB:-} ]]; then
-  read -r code mb < <(peak_mb "$BIN" detect --stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" \
-    --json "$T/gm.json" --png "$T/gm.png")
+# within_limit LABEL ARGS...: uwgrasp ARGS exits 0 within the limit.
+within_limit() {
+  local label=$1 code mb; shift
+  read -r code mb < <(peak_mb "$BIN" "$@")
   if [[ $code -eq 0 && $mb -le $UWGRASP_RSS_LIMIT_MB ]]; then ok; else
-    bad "detect --stereo --png: exit $code, peak resident set $mb MB (limit $UWGRASP_RSS_LIMIT_MB)"; fi
+    bad "$label: exit $code, peak resident set $mb MB (limit $UWGRASP_RSS_LIMIT_MB)"; fi
+}
+if [[ -n ${UWGRASP_RSS_LIMIT_MB:-} ]]; then
+  within_limit "detect --stereo --png" detect --stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" \
+    --json "$T/gm.json" --png "$T/gm.png"
   if [[ -f "$DATA/clouds/table_scene_mug_stereo_textured.pcd" ]]; then
-    read -r code mb < <(peak_mb "$BIN" detect "$DATA/clouds/table_scene_mug_stereo_textured.pcd" --object largest \
-      --json "$T/gm.json" --png "$T/gm.png")
-    if [[ $code -eq 0 && $mb -le $UWGRASP_RSS_LIMIT_MB ]]; then ok; else
-      bad "detect on the mug frame --png: exit $code, peak resident set $mb MB (limit $UWGRASP_RSS_LIMIT_MB)"; fi
+    within_limit "detect on the mug frame --png" detect "$DATA/clouds/table_scene_mug_stereo_textured.pcd" \
+      --object largest --json "$T/gm.json" --png "$T/gm.png"
   fi
 fi
 if "$BIN" stereo "$S/left.png" "$S/right.png" --calib "$S/stereo.yaml" --sparse --detector harris --out "$T/sp.pcd" \

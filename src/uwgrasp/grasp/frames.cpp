@@ -40,19 +40,25 @@ std::optional<Eigen::Vector3d> floor_down(const Eigen::Vector4f& plane, const Fr
 }
 }  // namespace
 
+namespace {
+// The angle between a downward direction in B and the vertical of cfg's own attitude.
+double tilt_of(const Eigen::Vector3d& down, const FrameConfig& cfg) {
+  const Eigen::Vector3d level =
+      level_from_body(cfg.capture_roll, cfg.capture_pitch).linear() * down;
+  return std::acos(std::clamp(level.z(), -1.0, 1.0));
+}
+}  // namespace
+
 std::optional<double> floor_tilt(const Eigen::Vector4f& plane, const FrameConfig& cfg) {
   const auto down = floor_down(plane, cfg);
   if (!down) return std::nullopt;
-  const Eigen::Vector3d level =
-      level_from_body(cfg.capture_roll, cfg.capture_pitch).linear() * *down;
-  return std::acos(std::clamp(level.z(), -1.0, 1.0));
+  return tilt_of(*down, cfg);
 }
 
 std::optional<Attitude> attitude_from_floor(const Eigen::Vector4f& plane, const FrameConfig& cfg,
                                             double max_tilt) {
   const auto down = floor_down(plane, cfg);
-  const auto tilt = floor_tilt(plane, cfg);
-  if (!down || !tilt || *tilt > max_tilt) return std::nullopt;
+  if (!down || tilt_of(*down, cfg) > max_tilt) return std::nullopt;
   // Fossen's gravity in the body frame, (-sin pitch, cos pitch sin roll, cos pitch cos roll),
   // solved for roll and pitch.
   return Attitude{std::atan2(down->y(), down->z()), std::asin(std::clamp(-down->x(), -1.0, 1.0))};
