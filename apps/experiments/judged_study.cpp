@@ -72,6 +72,11 @@ JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed
   use_matcher_error(cfg.grasp.shape, matcher_error);  // as detecting from a stereo pair does
   cfg.seed = seed;
   use_simulation_frames(cfg, st.sim);
+  if (plan.withhold_attitude) {
+    cfg.grasp.frames.camera.rpy.setZero();
+    cfg.grasp.frames.capture_roll = cfg.grasp.frames.capture_pitch = 0.0;
+  }
+  cfg.grasp.frames.capture_pitch += plan.slope;
   if (plan.calibrate) cfg.grasp.score.top = std::max<std::uint32_t>(cfg.grasp.score.top, 1000000);
   const auto t0 = std::chrono::steady_clock::now();
   grasp::Detection d;

@@ -38,6 +38,13 @@ struct JudgedPlan {
   eval::SummaryConfig summary;
   eval::RobustConfig robust;
   bool calibrate = true;          // judge every feasible candidate, not only the top ones
+  // The detector is not told the camera's attitude: its mount taken as looking straight ahead
+  // and the vehicle as level, as for a frame with no IMU data or mount calibration.
+  bool withhold_attitude = false;
+  // A seafloor rising ahead by this much (rad): the scene is rendered as it is (objects resting
+  // on a floor the vehicle sits parallel to), and the detector is given the vehicle's attitude
+  // against gravity, pitched nose-up by the slope, as its IMU would report on such a seafloor.
+  double slope = 0.0;
 };
 
 // One iteration of one case.

@@ -3,6 +3,7 @@
 // water with a realistic sensor; writes DIR/report.md and its figures. With --study judged: the
 // detector's grasps on scenes it was not tuned on, judged against the full meshes.
 #include <iostream>
+#include <numbers>
 
 #include "app/common.hpp"
 #include "commands.hpp"
@@ -25,6 +26,8 @@ struct ExperimentOptions {
   std::vector<std::string> sensors = {"rgbd"};
   std::int64_t robust = 25;
   bool no_calibration = false;
+  bool withhold_attitude = false;
+  double slope_deg = 0.0;
 };
 
 // --scenes: held-in (the real objects' meshes), thesis (its objects alone), or names.
@@ -47,6 +50,8 @@ int run_judged(const ExperimentOptions& o) {
   plan.iterations = o.iterations;
   plan.robust.samples = std::uint32_t(o.robust);
   plan.calibrate = !o.no_calibration;
+  plan.withhold_attitude = o.withhold_attitude;
+  plan.slope = o.slope_deg * std::numbers::pi / 180.0;
   const std::vector<std::string> scenes = judged_scenes(o.scenes);
   for (const auto& scene : scenes) (void)io::load_scene(scene);  // bad names fail before any work
   for (const auto& scene : scenes)
@@ -70,6 +75,9 @@ int run_experiments(const ExperimentOptions& o) {
   for (const auto& w : o.waters)
     if (w == "clear-noisy" || w == "scene")
       throw Error("--water " + w + ": only the judged study has it (--study judged)");
+  if (o.withhold_attitude || o.slope_deg != 0.0)
+    throw Error(std::string(o.withhold_attitude ? "--withhold-attitude" : "--slope") +
+                ": only the judged study has it (--study judged)");
   const Session session = open_session(o.common);
   experiments::ExperimentPlan plan;
   plan.base = session.config;
@@ -111,6 +119,16 @@ void add_experiments_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run
   cmd->add_option("--robust", o->robust, "Judged study: perturbed poses per top-1 (0: off)")
       ->check(CLI::Range(0, 100000))->capture_default_str();
   cmd->add_flag("--no-calibration", o->no_calibration, "Judged study: judge the top grasps only");
+  cmd->add_flag(
+      "--withhold-attitude", o->withhold_attitude,
+      "Judged study: the detector is not told the "
+      "camera's attitude (mount and vehicle taken as level), as for a frame with no IMU data");
+  cmd->add_option(
+         "--slope", o->slope_deg,
+         "Judged study: the seafloor rises ahead by this many degrees (the "
+         "detector is given the vehicle's attitude against gravity, pitched nose-up by it)")
+      ->check(CLI::Range(-45.0, 45.0))
+      ->capture_default_str();
   cmd->add_option("--sensor", o->sensors, "Judged study: rgbd (the depth camera), stereo (the rig's pair matched "
                   "into the cloud), or both")->delimiter(',')->check(CLI::IsMember({"rgbd", "stereo"}))
       ->capture_default_str();

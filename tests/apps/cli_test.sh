@@ -186,6 +186,13 @@ if "$BIN" experiments --study judged --scenes "$T/murky.yaml" --water scene --wa
    grep -Eq "murky.yaml,coastal,1,[a-z].*,$" "$T/jw/runs.csv"; then passes=$((passes + 1)); else
   echo "FAIL: judged study in the scene's own water: $(tail -3 "$T/jw.txt")"; fails=$((fails + 1)); fi
 expect 2 "only the judged study" -- experiments --water scene --iterations 1 --out "$T/out"
+expect 2 "only the judged study" -- experiments --withhold-attitude --iterations 1 --out "$T/out"
+expect 2 "slope" -- experiments --study judged --scenes cross --slope 60 --iterations 1 --out "$T/out"
+# The attitude withheld, or a sloping seafloor's: the report says what the detector was told.
+if "$BIN" experiments --study judged --scenes cross --water clear --iterations 1 --no-calibration --robust 0 \
+     --withhold-attitude --slope 10 --out "$T/ja" >/dev/null 2>"$T/ja.txt" &&
+   grep -q "| attitude | withheld" "$T/ja/report.md" && grep -q "| seafloor | rising 10.0 deg" "$T/ja/report.md"; then
+  passes=$((passes + 1)); else echo "FAIL: judged study, attitude withheld: $(tail -3 "$T/ja.txt")"; fails=$((fails + 1)); fi
 if [[ -d "$DATA/meshes" ]]; then
   if "$BIN" experiments --study judged --scenes sugar_box_turned --water clear --iterations 1 --out "$T/jm" \
        >/dev/null 2>&1 && grep -q "sugar_box_turned, clear" "$T/jm/report.md"; then passes=$((passes + 1)); else
