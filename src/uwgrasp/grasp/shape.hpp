@@ -119,8 +119,10 @@ struct ShapeTrees {
 // Builds the shape of an object seen by the camera of `frames`: `level` and `camera` are the
 // same points in L and in the camera frame, `normals` their normals in L (may be empty: no
 // mirrored normals). With `scene` and cfg.symmetry on, the back is also mirrored from the
-// seen side. Throws Error for an empty object, a non-positive voxel or resolution, or
-// negative lengths.
+// seen side, about planes searched upright to `floor` when it is 2-60 degrees from L's level
+// (objects rest on the seafloor: on a sloping one, or in a frame whose attitude is wrong, their
+// symmetry is square to it, not to L). Throws Error for an empty object, a non-positive voxel or
+// resolution, or negative lengths.
 ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
                            std::span<const Eigen::Vector3f> camera, const Frames& frames,
                            const std::optional<FloorPlane>& floor, const ShapeConfig& cfg,
