@@ -121,12 +121,12 @@ void add_experiments_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run
   cmd->add_flag("--no-calibration", o->no_calibration, "Judged study: judge the top grasps only");
   cmd->add_flag(
       "--withhold-attitude", o->withhold_attitude,
-      "Judged study: the detector is not told the "
-      "camera's attitude (mount and vehicle taken as level), as for a frame with no IMU data");
+      "Judged study: the detector is not told the camera's attitude (mount and vehicle taken "
+      "as level), as for a frame with no IMU data");
   cmd->add_option(
          "--slope", o->slope_deg,
-         "Judged study: the seafloor rises ahead by this many degrees (the "
-         "detector is given the vehicle's attitude against gravity, pitched nose-up by it)")
+         "Judged study: the seafloor rises ahead by this many degrees (the detector is given "
+         "the vehicle's attitude against gravity, pitched nose-up by it)")
       ->check(CLI::Range(-45.0, 45.0))
       ->capture_default_str();
   cmd->add_option("--sensor", o->sensors, "Judged study: rgbd (the depth camera), stereo (the rig's pair matched "
