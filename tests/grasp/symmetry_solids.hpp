@@ -1,6 +1,7 @@
 #pragma once
 // Analytic solids seen by a pinhole camera for the symmetry tests (test_symmetry.cpp): a can
-// standing upright, boxes turned and tilted; the oracle is the solid itself.
+// standing upright, a cylinder in any pose, boxes turned and tilted; the oracle is the solid
+// itself.
 #include <Eigen/Geometry>
 #include <cmath>
 #include <numbers>
