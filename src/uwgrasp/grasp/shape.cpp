@@ -26,41 +26,18 @@ std::optional<float> floor_z(const std::optional<FloorPlane>& f, float x, float 
   return -((*f)[0] * x + (*f)[1] * y + (*f)[3]) / (*f)[2];
 }
 
-// The least turn that puts the seafloor's normal on L's up (-z): the frame the symmetry search
-// takes as upright. Objects rest on the seafloor, so on a sloping one their symmetry planes are
-// square to it, not to gravity (judged, 20 degrees of slope: the lying bottle held 60 of 140
-// top-1s with gravity's upright). None (L's own upright) without a floor, for one within
-// kLevelEnough of level (the search's own tilt steps cover that; level seafloors keep their planes
-// bit for bit) or one steeper than kMaxFloorTilt (a wall).
-std::optional<Eigen::Matrix3f> upright_from_level(const std::optional<FloorPlane>& floor) {
+// The seafloor's down in L: the way the symmetry search takes as down. Objects rest on the
+// seafloor, so on a sloping one their symmetry planes are square to it, not to gravity (judged,
+// 20 degrees of slope: the lying bottle held 60 of 140 top-1s with gravity's down). L's own down
+// without a floor, for one within kLevelEnough of level (the search's own tilt steps cover that;
+// level seafloors keep their planes bit for bit) or one steeper than kMaxFloorTilt (a wall).
+V3 seafloor_down(const std::optional<FloorPlane>& floor) {
   constexpr float kLevelEnough = 0.035f;  // rad, 2 degrees
-  if (!floor) return std::nullopt;
+  if (!floor) return V3::UnitZ();
   const V3 n = floor->head<3>().normalized(), up = -V3::UnitZ();
   const float tilt = std::acos(std::clamp(n.dot(up), -1.0f, 1.0f));
-  if (!(tilt > kLevelEnough) || tilt > float(kMaxFloorTilt)) return std::nullopt;
-  return Eigen::Quaternionf::FromTwoVectors(n, up).toRotationMatrix();
-}
-
-// The symmetry planes (in L) searched in the seafloor's upright frame (upright_from_level);
-// `view` is L's, used as it is when the seafloor is level.
-std::vector<MirrorPlane> upright_symmetry(std::span<const V3> level, const SceneSight& scene,
-                                          const SceneView& view,
-                                          const std::optional<FloorPlane>& floor, float noise,
-                                          float tolerance, const ShapeConfig& cfg,
-                                          const cloud::KdTree* tree) {
-  const std::optional<Eigen::Matrix3f> turn = upright_from_level(floor);
-  if (!turn) return find_symmetry(level, view, noise, cfg.symmetry, tree);
-  const Eigen::Matrix3f& R = *turn;
-  std::vector<V3> upright(level.size());
-  for (std::size_t i = 0; i < level.size(); ++i) upright[i] = R * level[i];
-  Pose camera_from_upright = view.camera_from_level;
-  camera_from_upright.linear() = view.camera_from_level.linear() * R.transpose().cast<double>();
-  const SceneView turned = make_scene_view(scene.points, scene.floor, camera_from_upright,
-                                           cfg.resolution, upright, 0.5f * tolerance);
-  std::vector<MirrorPlane> planes = find_symmetry(upright, turned, noise, cfg.symmetry);
-  for (MirrorPlane& p : planes)
-    p.normal = R.transpose() * p.normal;  // a turn about L's origin: offsets stay
-  return planes;
+  if (!(tilt > kLevelEnough) || tilt > float(kMaxFloorTilt)) return V3::UnitZ();
+  return -n;
 }
 
 // Sizes the grid over the object and its mirrored back, down to the seafloor below it (or its
@@ -190,7 +167,7 @@ ObjectShape complete_shape(std::span<const Eigen::Vector3f> level,
     const float tolerance = cfg.symmetry.tolerance + cfg.symmetry.noise_sigmas * s.noise;
     const SceneView view = make_scene_view(scene->points, scene->floor, camera_from_level, cfg.resolution, level,
                                            0.5f * tolerance);
-    s.planes = upright_symmetry(level, *scene, view, floor, s.noise, tolerance, cfg, trees.level);
+    s.planes = find_symmetry(level, view, s.noise, cfg.symmetry, trees.level, seafloor_down(floor));
     mirror_points(level, normals, s.planes, view, tolerance, mirrored, mirrored_normals);
   }
   size_grid(s, level, mirrored, floor, cfg);

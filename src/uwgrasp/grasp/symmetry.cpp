@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -139,8 +140,10 @@ std::vector<MirrorPlane> best_pair(const Search& search, const MirrorPlane& firs
 }
 }  // namespace
 
-std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, const SceneView& view,
-                                       float noise, const SymmetryConfig& cfg, const cloud::KdTree* shared) {
+std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level,
+                                       const SceneView& view, float noise,
+                                       const SymmetryConfig& cfg, const cloud::KdTree* shared,
+                                       const Eigen::Vector3f& down) {
   if (!cfg.enabled || level.size() < 10 || !(cfg.angle_step > 0.0f) || !(cfg.offset_step > 0.0f)) return {};
   std::vector<V3> sample;
   const std::size_t stride = std::max<std::size_t>(1, level.size() / std::max<std::uint32_t>(cfg.samples, 1));
@@ -149,7 +152,13 @@ std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, c
   for (const V3& p : sample) centroid += p;
   std::vector<V3> coarse_sample;
   for (std::size_t i = 0; i < sample.size(); i += 3) coarse_sample.push_back(sample[i]);
-  const Search search{sample, coarse_sample, view, cfg.tolerance + cfg.noise_sigmas * noise, cfg, centroid / float(sample.size())};
+  const float tolerance = cfg.tolerance + cfg.noise_sigmas * noise;
+  Search search{sample, coarse_sample, view, tolerance, cfg, centroid / float(sample.size())};
+  if (down != V3::UnitZ()) {  // the least turn from L's down to the seafloor's
+    search.level_from_upright =
+        Eigen::Quaternionf::FromTwoVectors(V3::UnitZ(), down).toRotationMatrix();
+    search.sloped = true;
+  }
   // Azimuths over half a turn: n and -n are one plane family, the tilt's sign covers the rest.
   const int azimuths = std::max(1, int(std::lround(std::numbers::pi_v<float> / cfg.angle_step)));
   const float tilt_step = 2.0f * cfg.angle_step;
@@ -159,7 +168,7 @@ std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, c
   tbb::parallel_for(std::size_t(0), coarse.size(), [&](std::size_t k) {
     const float a = float(k % std::size_t(azimuths)) * cfg.angle_step;
     const float t = float(int(k / std::size_t(azimuths)) - tilts) * tilt_step;
-    coarse[k] = search.coarse(direction(a, t));
+    coarse[k] = search.coarse(search.normal_at(a, t));
   });
   // The best plane `allowed` lets through, refined; a tilted plane must beat the best upright
   // one by tilt_margin (objects rest on the seafloor: upright symmetry is the likelier one, and

@@ -68,10 +68,14 @@ struct MirrorPlane {
 // The object's symmetry planes (none, one, or two perpendicular ones; about perpendicular with
 // `perpendicular` off), best first.
 // `level`: the object's points in L (`tree`, when given: a k-d tree over them). `noise`: its
-// surface noise (sigma, m). Deterministic.
-std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level, const SceneView& view,
-                                       float noise, const SymmetryConfig& cfg,
-                                       const cloud::KdTree* tree = nullptr);
+// surface noise (sigma, m). `down`: the seafloor's down in L (unit), which the normals' tilt and
+// the upright preference are taken from: objects rest on the seafloor, so on a sloping one their
+// planes are square to it, not to L. Deterministic.
+std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level,
+                                       const SceneView& view, float noise,
+                                       const SymmetryConfig& cfg,
+                                       const cloud::KdTree* tree = nullptr,
+                                       const Eigen::Vector3f& down = Eigen::Vector3f::UnitZ());
 
 // The points mirrored about the planes (and about both, for two), with their normals, kept
 // where the camera could not have seen them (hidden): the object's completed back.

@@ -40,6 +40,17 @@ struct Search {
   float tolerance;
   const SymmetryConfig& cfg;
   V3 centroid;
+  // The frame the normals' azimuth and tilt are taken in (z: the seafloor's down), in L; the
+  // identity, and no turn made, on a level seafloor.
+  Eigen::Matrix3f level_from_upright = Eigen::Matrix3f::Identity();
+  bool sloped = false;
+
+  V3 down() const { return level_from_upright.col(2); }
+  // The normal at `azimuth` and `tilt` (from the seafloor's horizontal), in L.
+  V3 normal_at(float azimuth, float tilt) const {
+    const V3 n = direction(azimuth, tilt);
+    return sloped ? V3(level_from_upright * n) : n;
+  }
 
   Scored coarse(const V3& n) const {
     float lo = std::numeric_limits<float>::max(), hi = -lo;
@@ -58,14 +69,15 @@ struct Search {
     return near(n, n.dot(c.mirror(centroid) + (c.normal.dot(centroid) - c.offset) * c.normal));
   }
   // The planes whose normals are perpendicular to `axis` (a unit normal), turned by phi from the
-  // horizontal one: m = cos(phi) a + sin(phi) b, a = the horizontal unit vector across the axis,
-  // b = axis x a (vertical when the axis is horizontal). Each at its best offset; in phi order.
+  // horizontal one (the seafloor's): m = cos(phi) a + sin(phi) b, a = the horizontal unit vector
+  // across the axis, b = axis x a (vertical when the axis is horizontal). Each at its best
+  // offset; in phi order.
   struct Turned {
     float phi = 0.0f;
     Scored s;
   };
-  static V3 across(const V3& axis, float phi) {
-    V3 a = V3::UnitZ().cross(axis);
+  V3 across(const V3& axis, float phi) const {
+    V3 a = down().cross(axis);
     a = a.norm() > 1e-3f ? a.normalized() : V3::UnitX();
     return std::cos(phi) * a + std::sin(phi) * axis.cross(a).normalized();
   }
@@ -75,7 +87,7 @@ struct Search {
       const float phi = phi0 + float(int(k) - steps) * step;
       const V3 n = across(axis, phi);
       tried[k].phi = phi;
-      if (std::abs(n.z()) > std::sin(cfg.max_tilt) + 1e-6f) return;
+      if (std::abs(n.dot(down())) > std::sin(cfg.max_tilt) + 1e-6f) return;
       if (around == nullptr) {
         tried[k].s = coarse(n);
         return;
@@ -93,7 +105,7 @@ struct Search {
     tbb::parallel_for(std::size_t(0), tried.size(), [&](std::size_t k) {
       const int i = int(k) / columns - 3, j = int(k) % columns - tilt_steps;
       const float tl = std::clamp(tilt + float(j) * dt, -cfg.max_tilt, cfg.max_tilt);
-      const V3 n = direction(azimuth + float(i) * da, tl);
+      const V3 n = normal_at(azimuth + float(i) * da, tl);
       tried[k] = turned_to(c.plane, n);
     });
     Scored best;
