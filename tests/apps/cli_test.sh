@@ -51,10 +51,15 @@ if [[ -f "$MUG" ]]; then
     --set grasp.score.weights.inliers=0 --json "$J"
   expect 2 "--object" -- detect "$MUG" --object colour --json "$J"
   expect 2 "does not exist" -- detect "$MUG" --object label:399 --json "$J"
-  # A good run on the mug (the nearest object): the best grasp is printed and grasps.json written.
+  # A good run on the mug (the nearest object): exit 0, the shape line, grasps.json written, and
+  # what stdout says agrees with the file. The mug's rim grasps hold on its model in 10-15 % of
+  # their perturbed poses, at the edge of min_robustness: whether the default seed's best one
+  # passes turns with the model's noise, so either outcome is right here; that a grasp is found
+  # where the outcome is not marginal is asserted on the RGB-D frame below.
   if "$BIN" detect "$MUG" --object nearest --json "$T/d1.json" --threads 1 >"$T/stdout" 2>"$T/stderr" &&
-     grep -q "best grasp" "$T/stdout" && grep -q '"orientation_xyzw"' "$T/d1.json" &&
-     grep -Eq "^shape: [0-9]+ seen points, surface noise [0-9]+\.[0-9] mm" "$T/stdout"; then
+     grep -Eq "^shape: [0-9]+ seen points, surface noise [0-9]+\.[0-9] mm" "$T/stdout" &&
+     { { grep -q "^best grasp" "$T/stdout" && grep -q '"orientation_xyzw"' "$T/d1.json"; } ||
+       { grep -q "^no feasible grasp: the 40 best-predicted" "$T/stdout" && grep -q '"grasps": \[\]' "$T/d1.json"; }; }; then
     passes=$((passes + 1))
   else
     echo "FAIL: good detect run: $(cat "$T/stderr")"; fails=$((fails + 1))
@@ -87,6 +92,17 @@ if [[ -f "$MUG" ]]; then
     echo "FAIL: outputs differ between 1 and 2 threads"; fails=$((fails + 1)); fi
 else
   echo "skipped the real-data CLI cases: $MUG not found"
+fi
+# A real RGB-D frame whose largest object (a box) has grasps that hold on its model in most
+# perturbed poses: the best grasp is printed and written, with the vehicle pose it requires.
+LEARN0="$DATA/clouds/mOSD_learn0.pcd"
+if [[ -f "$LEARN0" ]]; then
+  if "$BIN" detect "$LEARN0" --object largest --json "$T/box.json" >"$T/box.txt" 2>&1 &&
+     grep -q "^best grasp" "$T/box.txt" && grep -q "^  vehicle pose" "$T/box.txt" &&
+     grep -q '"orientation_xyzw"' "$T/box.json" && grep -q '"vehicle_pose"' "$T/box.json"; then ok; else
+    bad "detect on mOSD_learn0: $(tail -3 "$T/box.txt")"; fi
+else
+  echo "skipped the RGB-D frame's detect run: $LEARN0 not found"
 fi
 # Simulator: bad scenes, meshes, water and views are one-line errors with exit 2, nothing written.
 printf 'objects: [{name: a, parts: [{shape: mesh, file: %s/missing.dae}]}]\n' "$T" >"$T/nomesh.yaml"
