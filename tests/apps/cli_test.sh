@@ -52,10 +52,11 @@ if [[ -f "$MUG" ]]; then
   expect 2 "--object" -- detect "$MUG" --object colour --json "$J"
   expect 2 "does not exist" -- detect "$MUG" --object label:399 --json "$J"
   # A good run on the mug (the nearest object): exit 0, the shape line, grasps.json written, and
-  # what stdout says agrees with the file. The mug's rim grasps hold on its model in 10-15 % of
-  # their perturbed poses, at the edge of min_robustness: whether the default seed's best one
-  # passes turns with the model's noise, so either outcome is right here; that a grasp is found
-  # where the outcome is not marginal is asserted on the RGB-D frame below.
+  # what stdout says agrees with the file. The mug's best-predicted grasps sit at the edge of
+  # min_robustness (0.1): seeds 2-6 give a top-1 that holds on its model in 15-35 % of its
+  # perturbed poses, seed 1 none of the 40 measured. Which side a seed falls on turns with the
+  # model's noise, so either outcome is right here; that a grasp is found where the outcome is
+  # not marginal is asserted on the RGB-D frame below.
   if "$BIN" detect "$MUG" --object nearest --json "$T/d1.json" --threads 1 >"$T/stdout" 2>"$T/stderr" &&
      grep -Eq "^shape: [0-9]+ seen points, surface noise [0-9]+\.[0-9] mm" "$T/stdout" &&
      { { grep -q "^best grasp" "$T/stdout" && grep -q '"orientation_xyzw"' "$T/d1.json"; } ||
