@@ -36,6 +36,7 @@ Case make_case(sim::Scene scene) {
     if (c.scene.objects[i].interest) c.target = int(i);
   grasp::GraspConfig gc;
   gc.frames.camera = *c.scene.camera_mount;
+  grasp::given_attitude(gc.frames, c.scene.vehicle.rpy.x(), c.scene.vehicle.rpy.y());
   gc.sampler.kind = grasp::SamplerKind::uniform;
   gc.sampler.samples = 20000;
   gc.score.top = 100;

@@ -30,8 +30,7 @@ Simulation make_simulation(const io::Config& cfg, const std::string& scene, cons
 
 void use_simulation_frames(io::Config& cfg, const Simulation& s) {
   cfg.grasp.frames.camera = s.mount;
-  cfg.grasp.frames.capture_roll = s.scene.vehicle.rpy.x();
-  cfg.grasp.frames.capture_pitch = s.scene.vehicle.rpy.y();
+  grasp::given_attitude(cfg.grasp.frames, s.scene.vehicle.rpy.x(), s.scene.vehicle.rpy.y());
 }
 
 void require_depth(const sim::Frame& f, const Simulation& s) {

@@ -217,8 +217,8 @@ void write_judged_report(const std::string& dir, const std::vector<JudgedCaseRes
      << plan.base.seed << " (iteration i uses seed + i) |\n| iterations | " << plan.iterations
      << " per scene and water |\n";
   if (plan.withhold_attitude)
-    md << "| attitude | withheld: the detector takes the camera as looking straight ahead "
-          "from a level vehicle (the scenes' cameras are pitched down) |\n";
+    md << "| attitude | withheld: the detector is given no attitude and the camera's mount as "
+          "looking straight ahead (the scenes' cameras are pitched down), as for a cloud file |\n";
   if (plan.slope != 0.0)
     md << "| seafloor | " << fmt("rising %.1f", plan.slope * 180.0 / std::numbers::pi)
        << " deg ahead: the detector is given the vehicle's attitude against gravity |\n";

@@ -75,6 +75,7 @@ JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed
   if (plan.withhold_attitude) {
     cfg.grasp.frames.camera.rpy.setZero();
     cfg.grasp.frames.capture_roll = cfg.grasp.frames.capture_pitch = 0.0;
+    cfg.grasp.frames.level_from_floor = plan.base.grasp.frames.level_from_floor;  // as for a file
   }
   cfg.grasp.frames.capture_pitch += plan.slope;
   if (plan.calibrate) cfg.grasp.score.top = std::max<std::uint32_t>(cfg.grasp.score.top, 1000000);

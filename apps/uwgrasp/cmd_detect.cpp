@@ -130,15 +130,16 @@ void print_none(const grasp::ObjectGrasps& r) {
 }
 
 // The attitude the grasps were found in, when it came from the seafloor plane; a hint when the
-// plane is far from the level the configuration gives (a frame with no attitude given).
+// plane is far from the configured level and the configuration keeps it (level_from_floor=false).
 void print_level(const grasp::Detection& d, const grasp::FrameConfig& f) {
   const auto& plane = d.scene.pre.plane;
-  if (f.level_from_floor) {
+  if (grasp::levels_from_floor(f)) {
+    const bool asked = f.level_from_floor == grasp::FrameConfig::Level::floor;
     if (d.floor_attitude)
-      std::printf(
-          "level: roll %.1f, pitch %.1f deg from the seafloor plane "
-          "(grasp.frames.level_from_floor)\n",
-          deg(d.floor_attitude->roll), deg(d.floor_attitude->pitch));
+      std::printf("level: roll %.1f, pitch %.1f deg from the seafloor plane (%s)\n",
+                  deg(d.floor_attitude->roll), deg(d.floor_attitude->pitch),
+                  asked ? "grasp.frames.level_from_floor"
+                        : "no capture attitude given; grasp.frames.level_from_floor=auto");
     else
       std::printf(
           "level: no seafloor plane within %.0f deg of the configured level; capture_roll/pitch as "

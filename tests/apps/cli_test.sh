@@ -52,12 +52,15 @@ if [[ -f "$MUG" ]]; then
   expect 2 "--object" -- detect "$MUG" --object colour --json "$J"
   expect 2 "does not exist" -- detect "$MUG" --object label:399 --json "$J"
   # A good run on the mug (the nearest object): exit 0, the shape line, grasps.json written, and
-  # what stdout says agrees with the file. The mug's best-predicted grasps sit at the edge of
-  # min_robustness (0.1): seeds 2-6 give a top-1 that holds on its model in 15-35 % of its
-  # perturbed poses, seed 1 none of the 40 measured. Which side a seed falls on turns with the
-  # model's noise, so either outcome is right here; that a grasp is found where the outcome is
-  # not marginal is asserted on the RGB-D frame below.
+  # what stdout says agrees with the file. The mug's best-predicted grasps sit near
+  # min_robustness (0.1): seeds 1-6 give a top-1 that holds on its model in 25-35 % of its
+  # perturbed poses, with 4-10 of the 40 measured passing (levelled by the table; taken as level,
+  # seed 1 found none). Which side a seed falls on turns with the model's noise, so either outcome
+  # is right here; that a grasp is found where the outcome is not marginal is asserted on the
+  # RGB-D frame below. The frame has no attitude: it is levelled by its table (level_from_floor
+  # auto), 33 degrees from a level camera's.
   if "$BIN" detect "$MUG" --object nearest --json "$T/d1.json" --threads 1 >"$T/stdout" 2>"$T/stderr" &&
+     grep -Eq "^level: roll -?[0-9.]+, pitch -3[0-9]\.[0-9] deg from the seafloor plane \(no capture attitude given" "$T/stdout" &&
      grep -Eq "^shape: [0-9]+ seen points, surface noise [0-9]+\.[0-9] mm" "$T/stdout" &&
      { { grep -q "^best grasp" "$T/stdout" && grep -q '"orientation_xyzw"' "$T/d1.json"; } ||
        { grep -q "^no feasible grasp: the 40 best-predicted" "$T/stdout" && grep -q '"grasps": \[\]' "$T/d1.json"; }; }; then
@@ -70,6 +73,14 @@ if [[ -f "$MUG" ]]; then
   strip() { sed '/"timing_ms": {/,/}/d; /"threads":/d' "$1"; }
   if diff <(strip "$T/d1.json") <(strip "$T/d2.json") >/dev/null; then passes=$((passes + 1)); else
     echo "FAIL: grasps.json differs between 1 and 2 threads"; fails=$((fails + 1)); fi
+  # An attitude given in the config is kept: the table is then 15+ degrees off level, and detect
+  # says how to level by it instead.
+  if "$BIN" detect "$MUG" --object nearest --set grasp.frames.capture_pitch=0.1 >"$T/stdout" 2>"$T/stderr" &&
+     grep -q "^level: the seafloor plane is [0-9]* deg from level as configured" "$T/stdout"; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL: a configured attitude was not kept: $(grep '^level' "$T/stdout") $(cat "$T/stderr")"; fails=$((fails + 1))
+  fi
   # Nothing fits between the fingers: exit 0, an empty list and the rejection counts.
   if "$BIN" detect "$MUG" --object nearest --set grasp.gripper.max_aperture=0.004 \
        --set grasp.gripper.clearance=0 --json "$T/none.json" >"$T/stdout" 2>"$T/stderr" &&

@@ -30,6 +30,8 @@ Judged detect_and_judge(const sim::Scene& scene, io::Config cfg, std::uint64_t s
   Judged out;
   out.frame = sim::render_rgbd(world, T_WC, rc, seed);
   cfg.grasp.frames.camera = *scene.camera_mount;
+  grasp::given_attitude(cfg.grasp.frames, scene.vehicle.rpy.x(),
+                        scene.vehicle.rpy.y());  // an IMU's
   out.detection = grasp::detect(out.frame.cloud, cfg.preprocess, cfg.segment, cfg.grasp, seed);
   const eval::Camera cam{T_WC, out.frame.intrinsics, rc.camera.max_range};
   const grasp::Gripper g = grasp::make_gripper(cfg.grasp.gripper);

@@ -31,6 +31,7 @@ Detected detect_on(const std::string& scene_name) {
   out.frame = sim::render_rgbd(world, T_WC, rc, 1);
   io::Config cfg;
   cfg.grasp.frames.camera = *out.scene.camera_mount;
+  grasp::given_attitude(cfg.grasp.frames, out.scene.vehicle.rpy.x(), out.scene.vehicle.rpy.y());
   const grasp::Detection d = grasp::detect(out.frame.cloud, cfg.preprocess, cfg.segment, cfg.grasp, cfg.seed);
   out.json_path = (std::filesystem::temp_directory_path() / std::string("uwgrasp_roundtrip_").append(scene_name).append(".json")).string();
   io::write_json(out.json_path, io::grasps_to_json(d, cfg, "cloud.pcd", "test"));

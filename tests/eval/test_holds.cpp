@@ -155,6 +155,7 @@ std::pair<std::size_t, std::size_t> seen_and_taken(const sim::Scene& scene, cons
   const auto seen = std::size_t(std::count(f.labels.begin(), f.labels.end(), sim::kLabelFirstObject));
   io::Config c = cfg;
   c.grasp.frames.camera = *scene.camera_mount;
+  grasp::given_attitude(c.grasp.frames, scene.vehicle.rpy.x(), scene.vehicle.rpy.y());
   return {seen, grasp::detect(f.cloud, c.preprocess, c.segment, c.grasp, 1).object.size()};
 }
 }  // namespace

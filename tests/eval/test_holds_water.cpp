@@ -70,6 +70,7 @@ TEST(HoldsInTurbidWater, NoRedObjectIsStillNoObject) {
   const sim::Frame f = sim::render_rgbd(world, sim::camera_pose(s, {}), rc, 1);
   io::Config cfg;
   cfg.grasp.frames.camera = *s.camera_mount;
+  grasp::given_attitude(cfg.grasp.frames, s.vehicle.rpy.x(), s.vehicle.rpy.y());
   try {
     (void)grasp::detect(f.cloud, cfg.preprocess, cfg.segment, cfg.grasp, 1);
     ADD_FAILURE() << "a grasp on a red object in a scene without one";

@@ -35,7 +35,9 @@ sim::Frame thesis_frame(bool noise, std::uint64_t seed, std::uint32_t width = 64
 
 io::Config camera_config() {
   io::Config cfg;
-  cfg.grasp.frames.camera = *sim::builtin_scene("thesis").camera_mount;
+  const sim::Scene thesis = sim::builtin_scene("thesis");
+  cfg.grasp.frames.camera = *thesis.camera_mount;
+  grasp::given_attitude(cfg.grasp.frames, thesis.vehicle.rpy.x(), thesis.vehicle.rpy.y());
   cfg.segment.object.by = segment::ObjectBy::largest;
   return cfg;
 }

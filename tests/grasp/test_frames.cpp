@@ -79,6 +79,31 @@ TEST(FloorAttitude, RefusesWallsAndDegeneratePlanes) {
   EXPECT_FALSE(grasp::attitude_from_floor(Eigen::Vector4f(NAN, -1, 0, 1), level).has_value());
 }
 
+// "auto" levels from the floor only while no attitude is given: the defaults (both zero) say
+// nothing, a measured attitude (given_attitude, even a level one) or a configured one does.
+TEST(FloorAttitude, AutoLevelsFromTheFloorOnlyWithNoAttitudeGiven) {
+  using L = FrameConfig::Level;
+  FrameConfig f;
+  EXPECT_EQ(f.level_from_floor, L::automatic);
+  EXPECT_TRUE(grasp::levels_from_floor(f));
+  FrameConfig configured = f;
+  configured.capture_pitch = 0.1;
+  EXPECT_FALSE(grasp::levels_from_floor(configured));
+  FrameConfig measured = f;
+  grasp::given_attitude(measured, 0.0, 0.0);
+  EXPECT_FALSE(grasp::levels_from_floor(measured));
+  EXPECT_EQ(measured.level_from_floor, L::attitude);
+  FrameConfig always = f;
+  always.level_from_floor = L::floor;
+  grasp::given_attitude(always, 0.2, -0.1);  // an explicit choice outranks a measurement
+  EXPECT_TRUE(grasp::levels_from_floor(always));
+  EXPECT_DOUBLE_EQ(always.capture_roll, 0.2);
+  EXPECT_DOUBLE_EQ(always.capture_pitch, -0.1);
+  FrameConfig never = f;
+  never.level_from_floor = L::attitude;
+  EXPECT_FALSE(grasp::levels_from_floor(never));
+}
+
 // The thesis scene from the simulator's pitched camera, with the depth camera's noise: given the
 // mount as if level and no attitude, the detection takes the camera's pitch from the seafloor
 // plane it fitted, and finds its grasps in (nearly) the true L.
@@ -92,7 +117,7 @@ TEST(FloorAttitude, ADetectionFindsThePitchOfTheCameraThatSawIt) {
   io::Config cfg;
   cfg.segment.object.by = segment::ObjectBy::largest;
   cfg.grasp.frames.camera = {truth.position, Eigen::Vector3d::Zero()};
-  cfg.grasp.frames.level_from_floor = true;
+  cfg.grasp.frames.level_from_floor = FrameConfig::Level::floor;
   const grasp::Detection d = grasp::detect(frame, cfg.preprocess, cfg.segment, cfg.grasp, 1);
   ASSERT_TRUE(d.floor_attitude.has_value());
   EXPECT_NEAR(d.floor_attitude->pitch, truth.rpy.y(), 1.0 * kDeg);
@@ -108,8 +133,17 @@ TEST(FloorAttitude, ADetectionFindsThePitchOfTheCameraThatSawIt) {
                    d.floor_attitude->pitch);
   EXPECT_DOUBLE_EQ(j["config"]["grasp"]["frames"]["capture_roll"].get<double>(),
                    d.floor_attitude->roll);
+  // grasps.json's config reproduces these frames when read back: the attitude, kept as given.
+  EXPECT_EQ(j["config"]["grasp"]["frames"]["level_from_floor"], "false");
+  // The default, "auto", given no attitude, finds the same.
+  cfg.grasp.frames.level_from_floor = FrameConfig::Level::automatic;
+  const grasp::Detection automatic =
+      grasp::detect(frame, cfg.preprocess, cfg.segment, cfg.grasp, 1);
+  ASSERT_TRUE(automatic.floor_attitude.has_value());
+  EXPECT_EQ(automatic.floor_attitude->pitch, d.floor_attitude->pitch);
+  EXPECT_EQ(automatic.floor_attitude->roll, d.floor_attitude->roll);
   // Off, the same frame is taken as level: its L is the pitch away from the truth.
-  cfg.grasp.frames.level_from_floor = false;
+  cfg.grasp.frames.level_from_floor = FrameConfig::Level::attitude;
   const grasp::Detection as_given = grasp::detect(frame, cfg.preprocess, cfg.segment, cfg.grasp, 1);
   EXPECT_FALSE(as_given.floor_attitude.has_value());
   EXPECT_NEAR(

@@ -74,6 +74,22 @@ TEST(Config, SetOverridesApplyAfterTheFile) {
     EXPECT_NE(error_of("", {zero}).find("is out of range [1, "), std::string::npos) << zero;
 }
 
+// level_from_floor was a bool before "auto": YAML's true / false keep their meaning.
+TEST(Config, LevelFromFloorTakesAutoAndTheOldBooleans) {
+  using L = grasp::FrameConfig::Level;
+  EXPECT_EQ(Config{}.grasp.frames.level_from_floor, L::automatic);
+  const std::pair<const char*, L> cases[] = {
+      {"auto", L::automatic}, {"true", L::floor}, {"false", L::attitude}};
+  for (const auto& [text, level] : cases) {
+    const Config c = parse_config("", "x", {std::string("grasp.frames.level_from_floor=") + text});
+    EXPECT_EQ(c.grasp.frames.level_from_floor, level) << text;
+    EXPECT_EQ(parse_config(to_yaml(c), "x").grasp.frames.level_from_floor, level) << text;
+  }
+  EXPECT_NE(error_of("grasp:\n  frames:\n    level_from_floor: yes\n")
+                .find("grasp.frames.level_from_floor: 'yes' is not one of auto, true, false"),
+            std::string::npos);
+}
+
 TEST(Config, MissingFile) {
   EXPECT_THROW(load_config("/nonexistent/uwgrasp.yaml"), Error);
   EXPECT_EQ(load_config("", {"threads=2"}).threads, 2u);

@@ -191,7 +191,8 @@ PlainDetection Engine::detect_frame(const Capture& capture, const std::string& i
     cfg.grasp.frames.camera.rpy = {m.rpy[0], m.rpy[1], m.rpy[2]};
   }
   if (capture.roll_pitch)
-    cfg.grasp.frames.capture_roll = (*capture.roll_pitch)[0], cfg.grasp.frames.capture_pitch = (*capture.roll_pitch)[1];
+    uwgrasp::grasp::given_attitude(cfg.grasp.frames, (*capture.roll_pitch)[0],
+                                   (*capture.roll_pitch)[1]);
   PlainDetection out;
   out.points_in = cloud.size();
   uwgrasp::grasp::Detection& d = stream.impl_->detection;

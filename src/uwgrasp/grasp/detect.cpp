@@ -134,7 +134,7 @@ void detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   for (const std::uint32_t i : object) d.rests[i] = 0;
   around.rests = d.rests;
   d.floor_attitude.reset();
-  if (cfg.frames.level_from_floor && d.scene.pre.plane.found)
+  if (levels_from_floor(cfg.frames) && d.scene.pre.plane.found)
     d.floor_attitude = attitude_from_floor(d.scene.pre.plane.coefficients, cfg.frames);
   if (!d.floor_attitude) {
     d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);

@@ -27,6 +27,20 @@ Frames make_frames(const FrameConfig& cfg) {
   return f;
 }
 
+bool levels_from_floor(const FrameConfig& cfg) {
+  using Level = FrameConfig::Level;
+  return cfg.level_from_floor == Level::floor ||
+         (cfg.level_from_floor == Level::automatic && cfg.capture_roll == 0.0 &&
+          cfg.capture_pitch == 0.0);
+}
+
+void given_attitude(FrameConfig& cfg, double roll, double pitch) {
+  cfg.capture_roll = roll;
+  cfg.capture_pitch = pitch;
+  if (cfg.level_from_floor == FrameConfig::Level::automatic)
+    cfg.level_from_floor = FrameConfig::Level::attitude;
+}
+
 namespace {
 // The plane's downward direction (away from the camera's side) in B; nullopt for a plane with no
 // normal or through the camera.

@@ -24,11 +24,24 @@ struct FrameConfig {
   Mount gripper{Eigen::Vector3d(0.40, 0.0, 0.17), Eigen::Vector3d::Zero()};
   double capture_roll = 0.0;   // vehicle attitude when the cloud was captured (IMU), rad
   double capture_pitch = 0.0;
-  // Roll and pitch from the seafloor (support) plane that preprocessing found, taken as level,
-  // in place of capture_roll/pitch: for a frame that comes with no attitude (a cloud file from a
-  // tabletop or hand-held camera). Off: capture_roll/pitch as given (the IMU's, on a vehicle).
-  bool level_from_floor = false;
+  // Where L's level comes from (grasp.frames.level_from_floor). A frame that comes with no
+  // attitude (a cloud file from a tabletop or hand-held camera) is best levelled by its seafloor
+  // (support) plane; a vehicle's IMU gives capture_roll/pitch.
+  enum class Level {
+    automatic,  // "auto": the floor when no attitude is given (capture_roll = capture_pitch = 0,
+                // the defaults, and no source called given_attitude), else capture_roll/pitch
+    floor,      // "true": roll and pitch from the seafloor plane, in place of capture_roll/pitch
+    attitude,   // "false": capture_roll/pitch as given
+  };
+  Level level_from_floor = Level::automatic;
 };
+
+// Whether the seafloor plane, when one is found, sets L's level under cfg (Level above).
+bool levels_from_floor(const FrameConfig& cfg);
+
+// A measured capture attitude (an IMU's, a simulated scene's vehicle): sets capture_roll/pitch and
+// makes level_from_floor's "auto" keep them, even when both are zero.
+void given_attitude(FrameConfig& cfg, double roll, double pitch);
 
 // A support plane whose normal is further than this from the configured vertical is taken for a
 // wall, not the floor, by level_from_floor (a camera pitched 37 degrees down at a table sees the

@@ -35,7 +35,9 @@ void visit_frames(Visitor& v, grasp::FrameConfig& f) {
   visit_mount(v, "gripper", f.gripper);
   v.field("capture_roll", f.capture_roll, -kPi, kPi);
   v.field("capture_pitch", f.capture_pitch, -kPi / 2, kPi / 2);
-  v.field("level_from_floor", f.level_from_floor);
+  using L = grasp::FrameConfig::Level;  // "true" / "false": a YAML bool, as before "auto" existed
+  enum_choice<L>(v, "level_from_floor", f.level_from_floor,
+                 {{"auto", L::automatic}, {"true", L::floor}, {"false", L::attitude}});
 }
 
 void visit_sampler(Visitor& v, grasp::SamplerConfig& s) {

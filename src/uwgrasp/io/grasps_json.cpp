@@ -88,6 +88,7 @@ json grasps_to_json(const grasp::Detection& d, const Config& cfg, const std::str
   if (d.floor_attitude) {
     effective.grasp.frames.capture_roll = d.floor_attitude->roll;
     effective.grasp.frames.capture_pitch = d.floor_attitude->pitch;
+    effective.grasp.frames.level_from_floor = grasp::FrameConfig::Level::attitude;
   }
   j["config"] = to_json(effective);
   json rejected = json::object();
