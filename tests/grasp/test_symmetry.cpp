@@ -100,15 +100,24 @@ TEST(Symmetry, AnUprightCanIsMirroredAboutAPlaneThroughItsAxis) {
   EXPECT_GT(far_side, back.size() / 4);
 }
 
+// The second plane searched freely near square to the first (perpendicular: false) finds the
+// other face plane too: on a noiseless box, the free search has nothing to pull it off square.
 TEST(Symmetry, ATurnedBoxIsCompletedByItsTwoFacePlanes) {
   const V3 base(0.75f, -0.01f, kFloor), size(0.09f, 0.05f, 0.07f);
   const float yaw = 0.5f;
   const Sighted seen = visible(box(base, size, yaw));
   const Sight s = sight_of(seen);
+  const Eigen::Matrix3f R = Eigen::AngleAxisf(yaw, V3::UnitZ()).toRotationMatrix();
+  SymmetryConfig free;
+  free.perpendicular = false;
+  const std::vector<MirrorPlane> freely = find_symmetry(seen.level, s.view(), 0.0f, free);
+  EXPECT_EQ(freely.size(), 2u) << "searched freely";
+  for (const MirrorPlane& p : freely)
+    EXPECT_GT(std::max(std::abs(p.normal.dot(R.col(0))), std::abs(p.normal.dot(R.col(1)))), 0.99f)
+        << "searched freely: " << p.normal.transpose();
   const std::vector<MirrorPlane> planes = find_symmetry(seen.level, s.view(), 0.0f, SymmetryConfig{});
   ASSERT_EQ(planes.size(), 2u) << "both of the box's upright symmetry planes";
   EXPECT_LT(std::abs(planes[0].normal.dot(planes[1].normal)), 1e-5f) << "square to each other";
-  const Eigen::Matrix3f R = Eigen::AngleAxisf(yaw, V3::UnitZ()).toRotationMatrix();
   for (const MirrorPlane& p : planes) {
     const float along_x = std::abs(p.normal.dot(R.col(0))), along_y = std::abs(p.normal.dot(R.col(1)));
     EXPECT_GT(std::max(along_x, along_y), 0.99f) << "normal along a face normal: " << p.normal.transpose();
