@@ -189,10 +189,8 @@ std::vector<Grasp> score_robust(const ModelView& view, const LevelCloud& cloud, 
   return all;
 }
 
-}  // namespace
-
-ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double leaf,
-                         std::uint64_t seed, StageTimer& timer, const Surroundings* around) {
+// find_grasps' input and settings, checked before any work; the gripper they make.
+Gripper check_inputs(const Cloud& object, const GraspConfig& cfg) {
   if (object.size() < 3)
     throw Error("object has " + std::to_string(object.size()) +
                 " points; grasp detection needs at least 3");
@@ -200,7 +198,7 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   check_consistent(object, "object cloud");
   for (std::size_t i = 0; i < object.size(); ++i)
     if (!is_finite(object.points[i])) throw Error("object point " + std::to_string(i) + " is not finite");
-  const Gripper g = make_gripper(cfg.gripper);
+  Gripper g = make_gripper(cfg.gripper);
   check_sampler(cfg.sampler);
   check_weights(cfg.score.weights);
   // Robust mode offers only the grasps it measured: with no pose or no candidate measured every
@@ -213,31 +211,44 @@ ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double lea
   if (cfg.score.weights.vehicle > 0.0 && !cfg.score.hold_cost)
     throw Error("grasp.score.weights.vehicle > 0 needs a vehicle model for the hold cost");
   (void)orientation_score(Eigen::Vector3d::Zero(), cfg.score.orientation);  // validates weights
+  return g;
+}
 
-  ObjectGrasps out;
-  out.frames = make_frames(cfg.frames);
-  const LevelCloud l = to_level(object, out.frames);
-  // One k-d tree over the object in L for the median spacing and the symmetry planes' alignment
-  // (each built its own: 1.3 ms a tree on a mOSD object, 4 ms on the mug frame's), and the
-  // shape's over its camera points for the surface noise: nanoflann builds a tree on one thread,
-  // so the two are built side by side.
-  std::optional<cloud::KdTree> level_tree, camera_tree;
+// One k-d tree over the object in L for the median spacing and the symmetry planes' alignment
+// (each built its own: 1.3 ms a tree on a mOSD object, 4 ms on the mug frame's), and the
+// shape's over its camera points for the surface noise: nanoflann builds a tree on one thread,
+// so the two are built side by side.
+struct Trees {
+  std::optional<cloud::KdTree> level, camera;
+  ShapeTrees shape() const { return {level ? &*level : nullptr, camera ? &*camera : nullptr}; }
+};
+void build_trees(const LevelCloud& l, const Cloud& object, const GraspConfig& cfg, double leaf,
+                 const Surroundings* around, Trees& t) {
   const bool spacing = cfg.score.inlier_mode != InlierMode::fixed && !(leaf > 0.0);
   tbb::parallel_invoke(
       [&] {
         if (spacing || (cfg.shape.enabled && cfg.shape.symmetry.enabled && around != nullptr))
-          level_tree.emplace(l.points);
+          t.level.emplace(l.points);
       },
       [&] {
-        if (cfg.shape.enabled) camera_tree.emplace(object.points);
+        if (cfg.shape.enabled) t.camera.emplace(object.points);
       });
-  out.max_inliers = max_inliers(cfg.score, g, l.points, leaf, level_tree ? &*level_tree : nullptr);
+}
+}  // namespace
+
+ObjectGrasps find_grasps(const Cloud& object, const GraspConfig& cfg, double leaf,
+                         std::uint64_t seed, StageTimer& timer, const Surroundings* around) {
+  const Gripper g = check_inputs(object, cfg);
+  ObjectGrasps out;
+  out.frames = make_frames(cfg.frames);
+  const LevelCloud l = to_level(object, out.frames);
+  Trees t;
+  build_trees(l, object, cfg, leaf, around, t);
+  out.max_inliers = max_inliers(cfg.score, g, l.points, leaf, t.level ? &*t.level : nullptr);
   timer.start("sample");  // first, so the stages print in pipeline order
   timer.start("shape");
-  const ShapeTrees trees{level_tree ? &*level_tree : nullptr,
-                         camera_tree ? &*camera_tree : nullptr};
   const Surroundings scene = around ? *around : Surroundings{object.points};
-  Modelled m = model_and_obstacles(l, object, g, cfg, around, scene, out, trees);
+  Modelled m = model_and_obstacles(l, object, g, cfg, around, scene, out, t.shape());
   const Model& model = m.model;
   timer.start("check");   // the hierarchy (and the occlusion map beside it) is part of the check's cost
   Shadow shadow;

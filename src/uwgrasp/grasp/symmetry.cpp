@@ -140,6 +140,73 @@ std::vector<MirrorPlane> best_pair(const Search& search, const MirrorPlane& firs
 }
 }  // namespace
 
+namespace {
+// The coarse grid of plane normals (azimuth over half a turn: n and -n are one plane family, the
+// tilt's sign covers the rest), each at its best offset.
+struct CoarseGrid {
+  const Search& search;
+  const SymmetryConfig& cfg;
+  int azimuths = 0, tilts = 0;
+  float tilt_step = 0.0f;
+  std::vector<Scored> planes;
+
+  CoarseGrid(const Search& s, const SymmetryConfig& c)
+      : search(s),
+        cfg(c),
+        azimuths(std::max(1, int(std::lround(std::numbers::pi_v<float> / c.angle_step)))),
+        tilts(c.max_tilt > 0.0f ? int(std::floor(c.max_tilt / (2.0f * c.angle_step))) : 0),
+        tilt_step(2.0f * c.angle_step) {
+    planes.resize(std::size_t(azimuths) * std::size_t(2 * tilts + 1));
+    tbb::parallel_for(std::size_t(0), planes.size(),
+                      [&](std::size_t k) { planes[k] = search.coarse(normal(k)); });
+  }
+  float azimuth(std::size_t k) const { return float(k % std::size_t(azimuths)) * cfg.angle_step; }
+  int row(std::size_t k) const { return int(k / std::size_t(azimuths)) - tilts; }
+  V3 normal(std::size_t k) const { return search.normal_at(azimuth(k), float(row(k)) * tilt_step); }
+
+  // The best plane `allowed` lets through, refined; a tilted plane must beat the best upright
+  // one by tilt_margin (objects rest on the seafloor: upright symmetry is the likelier one, and
+  // noise alone makes a small tilt score a little higher).
+  template <class Allowed>
+  Scored best(const Allowed& allowed) const {
+    const std::size_t none = planes.size();
+    std::size_t top = none, upright = none;
+    for (std::size_t k = 0; k < planes.size(); ++k) {
+      if (!planes[k].valid || !allowed(planes[k].plane)) continue;
+      if (top == none || planes[k].plane.score > planes[top].plane.score) top = k;
+      if (row(k) == 0 && (upright == none || planes[k].plane.score > planes[upright].plane.score))
+        upright = k;
+    }
+    if (top == none) return {};
+    const auto refined = [&](std::size_t k, float tilt_range) {
+      return search.refine(planes[k], azimuth(k), float(row(k)) * tilt_step, tilt_range);
+    };
+    const Scored upright_best = upright == none ? Scored{} : refined(upright, 0.0f);
+    if (top == upright) return upright_best;
+    const Scored tilted = refined(top, tilt_step);
+    return upright_best.valid && tilted.plane.score < upright_best.plane.score + cfg.tilt_margin
+               ? upright_best
+               : tilted;
+  }
+};
+
+// Each plane aligned to the mirror pairs it makes, kept aligned unless that scores worse.
+struct Aligned {
+  const Search& search;
+  const cloud::KdTree& tree;
+  Scored operator()(const Scored& s) const {
+    if (!s.valid) return s;
+    const MirrorPlane a = align(s.plane, search.sample, tree, search.view, search.tolerance);
+    // The offset searched again along the aligned normal: the midpoints of pairs found through
+    // a plane a little off are a little off too.
+    const float step = 0.25f * search.cfg.offset_step;
+    const Scored t = best_offset(search.sample, a.normal, search.view, a.offset - 8.0f * step,
+                                 a.offset + 8.0f * step, step, search.tolerance, search.cfg);
+    return t.valid && t.plane.score >= s.plane.score - 0.02f ? t : s;
+  }
+};
+}  // namespace
+
 std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level,
                                        const SceneView& view, float noise,
                                        const SymmetryConfig& cfg, const cloud::KdTree* shared,
@@ -159,59 +226,17 @@ std::vector<MirrorPlane> find_symmetry(std::span<const Eigen::Vector3f> level,
         Eigen::Quaternionf::FromTwoVectors(V3::UnitZ(), down).toRotationMatrix();
     search.sloped = true;
   }
-  // Azimuths over half a turn: n and -n are one plane family, the tilt's sign covers the rest.
-  const int azimuths = std::max(1, int(std::lround(std::numbers::pi_v<float> / cfg.angle_step)));
-  const float tilt_step = 2.0f * cfg.angle_step;
-  const int tilts = cfg.max_tilt > 0.0f ? int(std::floor(cfg.max_tilt / tilt_step)) : 0;
-  const int rows = 2 * tilts + 1;
-  std::vector<Scored> coarse(std::size_t(azimuths) * std::size_t(rows));
-  tbb::parallel_for(std::size_t(0), coarse.size(), [&](std::size_t k) {
-    const float a = float(k % std::size_t(azimuths)) * cfg.angle_step;
-    const float t = float(int(k / std::size_t(azimuths)) - tilts) * tilt_step;
-    coarse[k] = search.coarse(search.normal_at(a, t));
-  });
-  // The best plane `allowed` lets through, refined; a tilted plane must beat the best upright
-  // one by tilt_margin (objects rest on the seafloor: upright symmetry is the likelier one, and
-  // noise alone makes a small tilt score a little higher).
-  const auto best_where = [&](auto&& allowed) {
-    std::size_t best = coarse.size(), upright = coarse.size();
-    for (std::size_t k = 0; k < coarse.size(); ++k) {
-      if (!coarse[k].valid || !allowed(coarse[k].plane)) continue;
-      if (best == coarse.size() || coarse[k].plane.score > coarse[best].plane.score) best = k;
-      const bool flat = int(k / std::size_t(azimuths)) == tilts;
-      if (flat && (upright == coarse.size() || coarse[k].plane.score > coarse[upright].plane.score)) upright = k;
-    }
-    if (best == coarse.size()) return Scored{};
-    const auto refined = [&](std::size_t k, float tilt_range) {
-      const float a = float(k % std::size_t(azimuths)) * cfg.angle_step;
-      const float t = float(int(k / std::size_t(azimuths)) - tilts) * tilt_step;
-      return search.refine(coarse[k], a, t, tilt_range);
-    };
-    const Scored upright_best = upright == coarse.size() ? Scored{} : refined(upright, 0.0f);
-    if (best == upright) return upright_best;
-    const Scored tilted = refined(best, tilt_step);
-    return upright_best.valid && tilted.plane.score < upright_best.plane.score + cfg.tilt_margin ? upright_best : tilted;
-  };
-  // Each plane aligned to the mirror pairs it makes, kept aligned unless that scores worse.
+  const CoarseGrid grid(search, cfg);
+  const auto best_where = [&](auto&& allowed) { return grid.best(allowed); };
   std::optional<cloud::KdTree> own;
-  const cloud::KdTree& tree = shared ? *shared : own.emplace(level);
-  const auto aligned = [&](const Scored& s) {
-    if (!s.valid) return s;
-    const MirrorPlane a = align(s.plane, sample, tree, view, search.tolerance);
-    // The offset searched again along the aligned normal: the midpoints of pairs found through
-    // a plane a little off are a little off too.
-    const float step = 0.25f * cfg.offset_step;
-    const Scored t = best_offset(sample, a.normal, view, a.offset - 8.0f * step, a.offset + 8.0f * step, step,
-                                 search.tolerance, cfg);
-    return t.valid && t.plane.score >= s.plane.score - 0.02f ? t : s;
-  };
-  const Scored first = aligned(best_where([](const MirrorPlane&) { return true; }));
+  const Aligned aligned{search, shared ? *shared : own.emplace(level)};
+  const Scored first = aligned(grid.best([](const MirrorPlane&) { return true; }));
   if (!first.valid || !acceptable(first.plane, cfg)) return {};
   if (!cfg.perpendicular) {
     // The second plane searched freely, within 20 degrees of perpendicular to the first.
     std::vector<MirrorPlane> planes{first.plane};
     const float cos70 = std::cos(70.0f * std::numbers::pi_v<float> / 180.0f);
-    const Scored second = aligned(best_where(
+    const Scored second = aligned(grid.best(
         [&](const MirrorPlane& p) { return std::abs(p.normal.dot(first.plane.normal)) < cos70; }));
     if (second.valid && acceptable(second.plane, cfg)) planes.push_back(second.plane);
     return planes;
