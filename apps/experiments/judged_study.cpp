@@ -58,16 +58,10 @@ double use_stereo(const Setting& st, const JudgedPlan& plan, std::uint64_t seed,
   return matched.depth_error;
 }
 
-JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed, JudgedCaseResult& out,
-                   bool first) {
-  JudgedRun run;
-  const bool stereo = out.c.sensor == "stereo";
-  sim::RenderConfig depth_camera = st.sim.render;
-  if (stereo) depth_camera.noise.enabled = false;  // only the truth is needed from it
-  sim::Frame f = sim::render_rgbd(st.world, st.sim.world_from_camera, depth_camera, seed);
-  run.visible_points = std::size_t(
-      std::count(f.labels.begin(), f.labels.end(), std::uint16_t(sim::kLabelFirstObject + st.target)));
-  const double matcher_error = stereo ? use_stereo(st, plan, seed, f, run) : 0.0;
+// The detector's settings for one run: the plan's, with the run's seed, the simulated camera's
+// frames, the matcher's depth error, and what the plan withholds or tilts.
+io::Config run_config(const Setting& st, const JudgedPlan& plan, std::uint64_t seed,
+                      double matcher_error) {
   io::Config cfg = plan.base;
   use_matcher_error(cfg.grasp.shape, matcher_error);  // as detecting from a stereo pair does
   cfg.seed = seed;
@@ -79,6 +73,34 @@ JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed
   }
   cfg.grasp.frames.capture_pitch += plan.slope;
   if (plan.calibrate) cfg.grasp.score.top = std::max<std::uint32_t>(cfg.grasp.score.top, 1000000);
+  return cfg;
+}
+
+// The case's picture tile: its first run's judged grasps.
+cv::Mat tile(const Setting& st, const JudgedPlan& plan, const JudgedCase& c,
+             const eval::Camera& cam, const grasp::Gripper& g, std::span<const Pose> poses,
+             const eval::Evaluation& e, std::uint64_t seed, std::size_t feasible) {
+  viz::Picture pic;
+  pic.title = st.sim.scene.name + ", " + c.label();
+  pic.legend.push_back(fmt("seed %llu: top %zu of %zu feasible grasps",
+                           static_cast<unsigned long long>(seed), e.judgements.size(), feasible));
+  viz::View view;
+  view.width = 640, view.height = 480;
+  return judged_picture(st.world, cam, g, poses.first(e.judgements.size()), e.judgements, st.target,
+                        plan.summary.reference_mu, pic, view);
+}
+
+JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed,
+                   JudgedCaseResult& out, bool first) {
+  JudgedRun run;
+  const bool stereo = out.c.sensor == "stereo";
+  sim::RenderConfig depth_camera = st.sim.render;
+  if (stereo) depth_camera.noise.enabled = false;  // only the truth is needed from it
+  sim::Frame f = sim::render_rgbd(st.world, st.sim.world_from_camera, depth_camera, seed);
+  run.visible_points = std::size_t(std::count(f.labels.begin(), f.labels.end(),
+                                              std::uint16_t(sim::kLabelFirstObject + st.target)));
+  const double matcher_error = stereo ? use_stereo(st, plan, seed, f, run) : 0.0;
+  const io::Config cfg = run_config(st, plan, seed, matcher_error);
   const auto t0 = std::chrono::steady_clock::now();
   grasp::Detection d;
   try {
@@ -112,16 +134,7 @@ JudgedRun run_once(const Setting& st, const JudgedPlan& plan, std::uint64_t seed
   }
   if (plan.calibrate) score_outcomes(st, cam, g, d, poses, e, plan.summary.reference_mu, out.scored);
   run.judge_ms = ms_since(t1);
-  if (first) {
-    viz::Picture pic;
-    pic.title = st.sim.scene.name + ", " + out.c.label();
-    pic.legend.push_back(fmt("seed %llu: top %zu of %zu feasible grasps", static_cast<unsigned long long>(seed),
-                             e.judgements.size(), run.feasible));
-    viz::View view;
-    view.width = 640, view.height = 480;
-    out.tile = judged_picture(st.world, cam, g, std::span(poses).first(e.judgements.size()), e.judgements,
-                              st.target, plan.summary.reference_mu, pic, view);
-  }
+  if (first) out.tile = tile(st, plan, out.c, cam, g, poses, e, seed, run.feasible);
   return run;
 }
 }  // namespace

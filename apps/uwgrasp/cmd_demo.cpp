@@ -77,6 +77,48 @@ cv::Mat demo_picture(const std::vector<ObjectRun>& runs, const sim::Frame& f) {
   return viz::draw(f.cloud, wires, pic, viz::View{}, focus);
 }
 
+// The demo's output directory: the frame, its truth, the images and the grasps.
+void write_demo_files(const std::string& out, const Simulation& s, const sim::Frame& f,
+                      const std::optional<sim::StereoFrame>& pair,
+                      const std::vector<ObjectRun>& runs, std::uint64_t seed) {
+  make_output_dir(out);
+  const auto path = [&](const std::string& n) { return (std::filesystem::path(out) / n).string(); };
+  io::save_cloud(path("cloud.pcd"), f.cloud);
+  io::write_text(path("truth.yaml"),
+                 io::truth_yaml(s.scene, truth_info(s, f.intrinsics, "rgbd", seed)));
+  write_png(path("rgb.png"), viz::rgb_image(f.rgb, f.intrinsics.width, f.intrinsics.height));
+  if (pair) {
+    write_png(path("left.png"),
+              viz::rgb_image(pair->left, f.intrinsics.width, f.intrinsics.height));
+    write_png(path("right.png"),
+              viz::rgb_image(pair->right, f.intrinsics.width, f.intrinsics.height));
+    io::write_text(path("stereo.yaml"), io::stereo_yaml(*pair));
+  }
+  io::write_json(path("grasps.json"), demo_json(runs, s));
+  write_png(path("grasps.png"), demo_picture(runs, f));
+}
+
+// One line per object: its sampler, candidates, best grasp and time.
+void print_runs(const std::vector<ObjectRun>& runs) {
+  std::printf(
+      "  object   sampler  candidates  feasible  best score  width m  vehicle r/p/y deg   time "
+      "ms\n");
+  for (const auto& r : runs) {
+    const auto& res = r.d.result;
+    std::printf("  %-8s %-8s %10zu %9zu", r.name.c_str(), grasp::sampler_name(res.sampler),
+                res.candidates, res.feasible());
+    if (res.grasps.empty()) {
+      std::printf("  %10s %8s %19s", "-", "-", "-");
+    } else {
+      const auto& g = res.grasps.front();
+      const Eigen::Vector3d rpy = g.vehicle_rpy * (180.0 / 3.141592653589793);
+      std::printf("  %10.3f %8.4f  %5.1f %5.1f %6.1f", g.scores.total, g.width, rpy.x(), rpy.y(),
+                  rpy.z());
+    }
+    std::printf("  %8.0f\n", r.ms);
+  }
+}
+
 int run_demo(const DemoOptions& o) {
   Session session = open_session(o.common);
   const std::uint64_t seed = session.config.seed;
@@ -116,37 +158,13 @@ int run_demo(const DemoOptions& o) {
     progress("uwgrasp demo: detecting grasps on the " + s.scene.objects[i].name);
     runs.push_back(detect_object(s, f, i, o, session.config, seed));
   }
-  make_output_dir(o.out);
-  const auto path = [&](const std::string& n) { return (std::filesystem::path(o.out) / n).string(); };
-  io::save_cloud(path("cloud.pcd"), f.cloud);
-  io::write_text(path("truth.yaml"), io::truth_yaml(s.scene, truth_info(s, f.intrinsics, "rgbd", seed)));
-  write_png(path("rgb.png"), viz::rgb_image(f.rgb, f.intrinsics.width, f.intrinsics.height));
-  if (pair) {
-    write_png(path("left.png"), viz::rgb_image(pair->left, f.intrinsics.width, f.intrinsics.height));
-    write_png(path("right.png"), viz::rgb_image(pair->right, f.intrinsics.width, f.intrinsics.height));
-    io::write_text(path("stereo.yaml"), io::stereo_yaml(*pair));
-  }
-  io::write_json(path("grasps.json"), demo_json(runs, s));
-  write_png(path("grasps.png"), demo_picture(runs, f));
+  write_demo_files(o.out, s, f, pair, runs, seed);
 
   std::printf("scene %s (%s water, sensor noise %s) built in %.0f ms, %dx%d %s rendered in %.0f ms\n\n",
               s.scene.name.c_str(), s.render.water.preset.c_str(), o.noise ? "on" : "off", build_ms,
               f.intrinsics.width, f.intrinsics.height, pair ? "stereo pair (and RGB-D truth)" : "RGB-D frame",
               render_ms);
-  std::printf("  object   sampler  candidates  feasible  best score  width m  vehicle r/p/y deg   time ms\n");
-  for (const auto& r : runs) {
-    const auto& res = r.d.result;
-    std::printf("  %-8s %-8s %10zu %9zu", r.name.c_str(), grasp::sampler_name(res.sampler), res.candidates,
-                res.feasible());
-    if (res.grasps.empty()) {
-      std::printf("  %10s %8s %19s", "-", "-", "-");
-    } else {
-      const auto& g = res.grasps.front();
-      const Eigen::Vector3d rpy = g.vehicle_rpy * (180.0 / 3.141592653589793);
-      std::printf("  %10.3f %8.4f  %5.1f %5.1f %6.1f", g.scores.total, g.width, rpy.x(), rpy.y(), rpy.z());
-    }
-    std::printf("  %8.0f\n", r.ms);
-  }
+  print_runs(runs);
   std::printf("\nwrote %s: grasps.json grasps.png cloud.pcd rgb.png truth.yaml%s (%.1f s in all)\n",
               o.out.c_str(), pair ? " left.png right.png stereo.yaml" : "", ms_since(t0) / 1000.0);
   return 0;

@@ -46,6 +46,35 @@ Cloud object_points(const sim::Frame& f, const sim::Scene& scene) {
   return select(f.cloud, keep);
 }
 
+// The simulation's output directory: the cloud, the images, the truth and the config to detect
+// on it with.
+void write_simulation(const SimulateOptions& o, const Simulation& s, const sim::Frame& f,
+                      const std::optional<sim::StereoFrame>& stereo, const io::Config& config) {
+  make_output_dir(o.out);
+  const auto path = [&](const char* name) {
+    return (std::filesystem::path(o.out) / name).string();
+  };
+  const int w = f.intrinsics.width, h = f.intrinsics.height;
+  // In the world frame the camera pose goes into the PCD VIEWPOINT (how many tools write clouds).
+  const Cloud cloud = o.object_only ? object_points(f, s.scene) : f.cloud;
+  io::save_cloud(path("cloud.pcd"),
+                 o.frame == "world" ? transformed(cloud, s.world_from_camera) : cloud);
+  write_png(path("rgb.png"), viz::rgb_image(f.rgb, w, h));
+  write_png(path("depth.png"), viz::depth_image(f.depth, w, h));
+  write_png(path("labels.png"), viz::depth_image(f.labels, w, h));
+  if (stereo) {
+    write_png(path("left.png"), viz::rgb_image(stereo->left, w, h));
+    write_png(path("right.png"), viz::rgb_image(stereo->right, w, h));
+    io::write_text(path("stereo.yaml"), io::stereo_yaml(*stereo));
+  }
+  if (s.render.port) io::write_text(path("port.yaml"), port_yaml(*s.render.port));
+  io::write_text(path("truth.yaml"),
+                 io::truth_yaml(s.scene, truth_info(s, f.intrinsics, o.sensor, config.seed)));
+  io::Config detect_cfg = config;
+  use_simulation_frames(detect_cfg, s);
+  io::write_text(path("config.yaml"), io::to_yaml(detect_cfg));
+}
+
 int run_simulate(const SimulateOptions& o) {
   Session session = open_session(o.common);
   Simulation s = make_simulation(session.config, o.scene, o.water);
@@ -72,27 +101,9 @@ int run_simulate(const SimulateOptions& o) {
   if (o.sensor == "stereo")
     stereo = sim::render_stereo(world, s.world_from_camera, s.render, session.config.seed);
 
-  make_output_dir(o.out);
+  write_simulation(o, s, f, stereo, session.config);
   const auto path = [&](const char* name) { return (std::filesystem::path(o.out) / name).string(); };
   const int w = f.intrinsics.width, h = f.intrinsics.height;
-  // In the world frame the camera pose goes into the PCD VIEWPOINT (how many tools write clouds).
-  const Cloud cloud = o.object_only ? object_points(f, s.scene) : f.cloud;
-  io::save_cloud(path("cloud.pcd"), o.frame == "world" ? transformed(cloud, s.world_from_camera) : cloud);
-  write_png(path("rgb.png"), viz::rgb_image(f.rgb, w, h));
-  write_png(path("depth.png"), viz::depth_image(f.depth, w, h));
-  write_png(path("labels.png"), viz::depth_image(f.labels, w, h));
-  if (stereo) {
-    write_png(path("left.png"), viz::rgb_image(stereo->left, w, h));
-    write_png(path("right.png"), viz::rgb_image(stereo->right, w, h));
-    io::write_text(path("stereo.yaml"), io::stereo_yaml(*stereo));
-  }
-  if (s.render.port) io::write_text(path("port.yaml"), port_yaml(*s.render.port));
-  io::write_text(path("truth.yaml"),
-                 io::truth_yaml(s.scene, truth_info(s, f.intrinsics, o.sensor, session.config.seed)));
-  io::Config detect_cfg = session.config;
-  use_simulation_frames(detect_cfg, s);
-  io::write_text(path("config.yaml"), io::to_yaml(detect_cfg));
-
   std::size_t valid = 0;
   for (const auto d : f.depth) valid += d > 0;
   std::printf("scene %s: %zu objects, %zu triangles, water %s, noise %s\n", s.scene.name.c_str(),

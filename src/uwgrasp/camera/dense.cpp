@@ -169,11 +169,10 @@ double depth_error(const Rectification& rect, const DenseConfig& cfg) {
   return fB > 0.0 ? cfg.disparity_sigma * double(cfg.downscale) / fB : 0.0;
 }
 
-DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectification& rect,
-                        const DenseConfig& cfg, const std::string& what, StageTimer* timer) {
-  const auto stage = [&](const char* name) {
-    if (timer) timer->start(name);
-  };
+namespace {
+// The pair fits the calibration: one size, the calibrated one, 8-bit grey or colour.
+void check_pair(const cv::Mat& left, const cv::Mat& right, const Rectification& rect,
+                const std::string& what) {
   if (left.empty() || right.empty()) throw Error(what + ": an image is empty");
   if (left.size() != right.size() || left.type() != right.type())
     throw Error(what + ": the images differ in size or type (" + std::to_string(left.cols) + " x " +
@@ -185,35 +184,22 @@ DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectifi
                 std::to_string(rect.camera.height));
   if (left.depth() != CV_8U || (left.channels() != 1 && left.channels() != 3))
     throw Error(what + ": images must be 8-bit grey or colour");
-  DenseFrame out;
-  cv::Mat right_rect;
-  stage("rectify");
-  if (rect.left_map1.empty()) {
-    out.left_rectified = left, right_rect = right;
-  } else {
-    cv::remap(left, out.left_rectified, rect.left_map1, rect.left_map2, cv::INTER_LINEAR);
-    cv::remap(right, right_rect, rect.right_map1, rect.right_map2, cv::INTER_LINEAR);
-  }
-  // Matched on grey: colour triples the cost for little gain on underwater images.
-  cv::Mat gl = out.left_rectified, gr = right_rect, raw;
-  if (left.channels() == 3)
-    cv::cvtColor(out.left_rectified, gl, cv::COLOR_BGR2GRAY),
-        cv::cvtColor(right_rect, gr, cv::COLOR_BGR2GRAY);
-  stage("match");
-  int valid = 0;
-  raw = match(gl, gr, rect, cfg, valid);
-  stage("cloud");
+}
+
+// The organised cloud (and the disparity image, NaN where none) of SGBM's fixed-point
+// disparities `raw` at the rectified left image's pixels: `valid` is the least valid value.
+void triangulate(const cv::Mat& raw, int valid, const Rectification& rect, const DenseConfig& cfg,
+                 bool bgr, DenseFrame& out) {
   const Pinhole& k = rect.camera;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const double fB = k.fx * rect.baseline;
-  const int W = gl.cols, H = gl.rows, scale = int(cfg.downscale);
-  out.disparity.create(gl.size(), CV_32F);
+  const int W = out.left_rectified.cols, H = out.left_rectified.rows, scale = int(cfg.downscale);
+  out.disparity.create(out.left_rectified.size(), CV_32F);
   Cloud& c = out.cloud;
   c.width = std::uint32_t(W), c.height = std::uint32_t(H);
   c.points.resize(std::size_t(W) * std::size_t(H));
   c.colors.resize(c.points.size());
   const cv::Matx33d& M = rect.left_from_rect;
-  const bool bgr = left.channels() == 3;
   cv::parallel_for_(cv::Range(0, H), [&](const cv::Range& rows) {
     for (int v = rows.start; v < rows.end; ++v) {
       const auto* d16 = raw.ptr<short>(std::min(v / scale, raw.rows - 1));
@@ -238,6 +224,34 @@ DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectifi
       }
     }
   });
+}
+}  // namespace
+
+DenseFrame dense_stereo(const cv::Mat& left, const cv::Mat& right, const Rectification& rect,
+                        const DenseConfig& cfg, const std::string& what, StageTimer* timer) {
+  const auto stage = [&](const char* name) {
+    if (timer) timer->start(name);
+  };
+  check_pair(left, right, rect, what);
+  DenseFrame out;
+  cv::Mat right_rect;
+  stage("rectify");
+  if (rect.left_map1.empty()) {
+    out.left_rectified = left, right_rect = right;
+  } else {
+    cv::remap(left, out.left_rectified, rect.left_map1, rect.left_map2, cv::INTER_LINEAR);
+    cv::remap(right, right_rect, rect.right_map1, rect.right_map2, cv::INTER_LINEAR);
+  }
+  // Matched on grey: colour triples the cost for little gain on underwater images.
+  cv::Mat gl = out.left_rectified, gr = right_rect, raw;
+  if (left.channels() == 3)
+    cv::cvtColor(out.left_rectified, gl, cv::COLOR_BGR2GRAY),
+        cv::cvtColor(right_rect, gr, cv::COLOR_BGR2GRAY);
+  stage("match");
+  int valid = 0;
+  raw = match(gl, gr, rect, cfg, valid);
+  stage("cloud");
+  triangulate(raw, valid, rect, cfg, left.channels() == 3, out);
   out.depth_error = depth_error(rect, cfg);
   if (timer) timer->stop();
   return out;
