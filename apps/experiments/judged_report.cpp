@@ -201,6 +201,32 @@ void write_stereo(std::ostringstream& md, const std::vector<JudgedCaseResult>& r
   }
   md << "\n";
 }
+// One figure per object: a row per pose, its waters side by side.
+void write_figures(std::ostringstream& md, const std::vector<JudgedCaseResult>& results,
+                   const std::string& dir) {
+  md << "## Figures\n\nThe first iteration of each case: the true scene, the top grasps coloured "
+        "by their judged outcome (green holds, amber closes without force closure, red collides); "
+        "a row per scene, a column per water.\n\n";
+  std::map<std::string, std::vector<cv::Mat>> tiles;
+  std::map<std::string, std::set<std::string>> waters;
+  std::vector<std::string> order;
+  for (const auto& r : results) {
+    if (r.tile.empty()) continue;
+    // A scene file is named by its stem: its path would make a path of the figure's name.
+    std::string object = std::filesystem::path(r.c.scene).stem().string();
+    for (const char* pose : {"_lying", "_turned"})
+      if (object.ends_with(pose)) object.resize(object.size() - std::strlen(pose));
+    if (!tiles.count(object)) order.push_back(object);
+    tiles[object].push_back(r.tile);
+    waters[object].insert(r.c.label());
+  }
+  for (const auto& object : order) {
+    const std::string file = "judged_" + object + ".png";
+    write_png((std::filesystem::path(dir) / file).string(),
+              viz::grid(tiles[object], int(waters[object].size())));
+    md << "![" << object << "](" << file << ")\n\n";
+  }
+}
 }  // namespace
 
 void write_judged_report(const std::string& dir, const std::vector<JudgedCaseResult>& results,
@@ -234,28 +260,7 @@ void write_judged_report(const std::string& dir, const std::vector<JudgedCaseRes
   write_stereo(md, results);
   write_modes(md, results, plan);
   if (plan.calibrate) write_judged_calibration(md, results, plan);
-  // One figure per object: a row per pose, its waters side by side.
-  md << "## Figures\n\nThe first iteration of each case: the true scene, the top grasps coloured by "
-        "their judged outcome (green holds, amber closes without force closure, red collides); a row per "
-        "scene, a column per water.\n\n";
-  std::map<std::string, std::vector<cv::Mat>> tiles;
-  std::map<std::string, std::set<std::string>> waters;
-  std::vector<std::string> order;
-  for (const auto& r : results) {
-    if (r.tile.empty()) continue;
-    // A scene file is named by its stem: its path would make a path of the figure's name.
-    std::string object = std::filesystem::path(r.c.scene).stem().string();
-    for (const char* pose : {"_lying", "_turned"})
-      if (object.ends_with(pose)) object.resize(object.size() - std::strlen(pose));
-    if (!tiles.count(object)) order.push_back(object);
-    tiles[object].push_back(r.tile);
-    waters[object].insert(r.c.label());
-  }
-  for (const auto& object : order) {
-    const std::string file = "judged_" + object + ".png";
-    write_png((std::filesystem::path(dir) / file).string(), viz::grid(tiles[object], int(waters[object].size())));
-    md << "![" << object << "](" << file << ")\n\n";
-  }
+  write_figures(md, results, dir);
   io::write_text((std::filesystem::path(dir) / "runs.csv").string(), runs_csv(results, plan));
   io::write_text((std::filesystem::path(dir) / "report.md").string(), md.str());
 }

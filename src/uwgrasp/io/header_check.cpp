@@ -221,6 +221,29 @@ void ply_property(const std::string& path, const Words& w, std::vector<PlyElemen
   e.has_list = e.has_list || list;
   if (!list) e.row_bytes += ply_type_size(w[1]);
 }
+
+// After end_header (f just past it): the header's elements against each other and against the
+// data that follows.
+void check_ply_data(const std::string& path, std::ifstream& f, const std::string& format,
+                    const std::map<std::string, std::string>& info,
+                    const std::vector<PlyElement>& elements) {
+  if (format.empty()) bad_ply(path, "no format line");
+  const auto data_offset = static_cast<std::size_t>(f.tellg());
+  check_ply_grid(path, info, elements);
+  check_ply_colour(path, elements);
+  check_ply_range_grid(path, f, format, elements);
+  f.clear();
+  const auto body = std::filesystem::file_size(path) - data_offset;
+  std::size_t need = 0;  // bytes (binary) or lines (ascii) the leading list-free elements take
+  for (const auto& e : elements) {
+    if (e.has_list) break;
+    need += format == "ascii" ? e.count * 2 : e.count * e.row_bytes;
+  }
+  if (body < need)
+    throw Error(path + ": truncated ply file (" + std::to_string(body) + " data bytes, at least " +
+                std::to_string(need) + " expected)");
+}
+
 }  // namespace
 
 // PCL's PLY reader asserts (aborts) on headers it misreads, such as a line it does not know or
@@ -247,24 +270,7 @@ void check_ply(const std::string& path) {
       info[key] = w[2];
     }
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
-    if (w[0] == "end_header") {
-      if (format.empty()) bad_ply(path, "no format line");
-      const auto data_offset = static_cast<std::size_t>(f.tellg());
-      check_ply_grid(path, info, elements);
-      check_ply_colour(path, elements);
-      check_ply_range_grid(path, f, format, elements);
-      f.clear();
-      const auto body = std::filesystem::file_size(path) - data_offset;
-      std::size_t need = 0;  // bytes (binary) or lines (ascii) the leading list-free elements take
-      for (const auto& e : elements) {
-        if (e.has_list) break;
-        need += format == "ascii" ? e.count * 2 : e.count * e.row_bytes;
-      }
-      if (body < need)
-        throw Error(path + ": truncated ply file (" + std::to_string(body) + " data bytes, at least " +
-                    std::to_string(need) + " expected)");
-      return;
-    }
+    if (w[0] == "end_header") return check_ply_data(path, f, format, info, elements);
     if (w[0] == "format") {
       if (!format.empty() || w.size() != 3 || w[2] != "1.0" ||
           (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))

@@ -183,11 +183,11 @@ std::size_t select_whole_object(const Cloud& cloud, const Objects& o, const Segm
   throw Error("unknown object selection mode");
 }
 
-std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std::size_t selected,
-                                      const ObjectConfig& cfg, float reach) {
-  std::vector<std::size_t> out{selected};
-  std::vector<char> taken(o.points.size(), 0), eligible(o.points.size(), 1);
-  taken[selected] = 1;
+namespace {
+// Which objects may join the selected one as its parts.
+std::vector<char> eligible_parts(const Cloud& cloud, const Objects& o, std::size_t selected,
+                                 const ObjectConfig& cfg) {
+  std::vector<char> eligible(o.points.size(), 1);
   if (cfg.by == ObjectBy::color && cloud.has_colors()) {
     // A part: mostly (half its points) over min_intensity, or, as the water dims every part
     // alike, of a mean intensity at least half the selected object's. The first alone held in
@@ -211,6 +211,16 @@ std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std:
     for (std::size_t k = 0; k < o.points.size(); ++k)
       eligible[k] = !fragment(extent_of(cloud, o.points[k]), cfg);
   }
+  return eligible;
+}
+}  // namespace
+
+std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std::size_t selected,
+                                      const ObjectConfig& cfg, float reach) {
+  std::vector<std::size_t> out{selected};
+  std::vector<char> taken(o.points.size(), 0);
+  taken[selected] = 1;
+  const std::vector<char> eligible = eligible_parts(cloud, o, selected, cfg);
   // Each object's bounds: an object whose box lies beyond `reach` of a part's box has no point
   // within reach of it, and is not searched (on a real frame, most of the scene). The 0.1 %
   // allowance keeps a pair at exactly `reach` searched whatever the rounding of either distance.

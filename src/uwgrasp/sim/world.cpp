@@ -49,6 +49,30 @@ float value_noise(float px, float py) {
   const float b = lattice(x, y + 1) + u * (lattice(x + 1, y + 1) - lattice(x, y + 1));
   return a + v * (b - a);
 }
+// Object i's part p: the object's colour and a light texture, or the part's checkerboard.
+Surface part_surface(const SceneObject& o, std::size_t i, std::size_t p) {
+  Surface s{.albedo = albedo(o.color),
+            .texture = 0.08f,
+            .label = static_cast<std::uint16_t>(kLabelFirstObject + i)};
+  if (o.parts[p].shape.checker.square > 0.0) {
+    s.checker = o.parts[p].shape.checker;
+    s.texture = 0.0f;
+    s.part_from_world = (o.pose * o.parts[p].pose).inverse().matrix().cast<float>();
+  }
+  return s;
+}
+
+// The part's mesh in the world; a bad part is named by its object and index.
+Mesh placed_part_mesh(const SceneObject& o, std::size_t p) {
+  Mesh m;
+  try {
+    m = part_mesh(o.parts[p]);
+  } catch (const Error& e) {
+    throw Error("object " + o.name + " part " + std::to_string(p) + ": " + e.what());
+  }
+  transform(m, o.pose);
+  return m;
+}
 }  // namespace
 
 World::Impl::~Impl() {
@@ -97,27 +121,10 @@ World::World(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   }
   // One geometry per part: each is closed on its own, which the inside tests of query.hpp need
   // (a union of overlapping parts is not, e.g. the cross's bars meet in coincident faces).
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    const SceneObject& o = scene.objects[i];
-    const Surface surface{.albedo = albedo(o.color), .texture = 0.08f,
-                          .label = static_cast<std::uint16_t>(kLabelFirstObject + i)};
-    for (std::size_t p = 0; p < o.parts.size(); ++p) {
-      Surface part_surface = surface;
-      if (o.parts[p].shape.checker.square > 0.0) {
-        part_surface.checker = o.parts[p].shape.checker;
-        part_surface.texture = 0.0f;
-        part_surface.part_from_world = (o.pose * o.parts[p].pose).inverse().matrix().cast<float>();
-      }
-      Mesh m;
-      try {
-        m = part_mesh(o.parts[p]);
-      } catch (const Error& e) {
-        throw Error("object " + o.name + " part " + std::to_string(p) + ": " + e.what());
-      }
-      transform(m, o.pose);
-      add(std::move(m), part_surface, {static_cast<int>(i), static_cast<int>(p)});
-    }
-  }
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    for (std::size_t p = 0; p < scene.objects[i].parts.size(); ++p)
+      add(placed_part_mesh(scene.objects[i], p), part_surface(scene.objects[i], i, p),
+          {static_cast<int>(i), static_cast<int>(p)});
   rtcCommitScene(w.rtc);
   if (rtcGetDeviceError(w.device) != RTC_ERROR_NONE) throw Error("sim: Embree failed to build the scene");
 }
