@@ -107,6 +107,16 @@ static void BM_OrgSegments(benchmark::State& s) {
   for (auto _ : s) benchmark::DoNotOptimize(segment::segment_scene(frame().raw, {}, {}, 1));
 }
 
+// The whole object `largest` selects on the frame's segments: its connected objects and the
+// parts within segment.object.part_reach gathered to it (detect's `select` stage).
+static void BM_WholeObject(benchmark::State& s) {
+  static const segment::Scene seen = segment::segment_scene(frame().raw, {}, {}, 1);
+  segment::ObjectConfig cfg;
+  cfg.by = segment::ObjectBy::largest;
+  std::size_t selected = 0;
+  for (auto _ : s) benchmark::DoNotOptimize(grasp::object_points(seen, cfg, selected));
+}
+
 // The reach check's marine-snow filter over the frame's processed points (the detector gives it
 // the whole processed scene, e.g. 85,000 points on the real mug frame).
 static void BM_Debris(benchmark::State& s) {
@@ -159,6 +169,7 @@ BENCHMARK(BM_OrgWindowLists)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OrgOutlierStatistic)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OrgNormals)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OrgSegments)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_WholeObject)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Debris)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BvhBuild)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Check3000)->Unit(benchmark::kMillisecond);

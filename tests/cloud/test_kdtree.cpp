@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "shapes.hpp"
 #include "uwgrasp/cloud/kdtree.hpp"
@@ -57,6 +58,36 @@ TEST(KdTree, RadiusMatchesBruteForce) {
     std::sort(got.begin(), got.end());
     EXPECT_EQ(got, brute);
   }
+}
+
+// any_within(q, r) is "the nearest point's squared distance <= r * r", the test gather_parts
+// made with knn(q, 1): at random radii, at the nearest's own distance and one float step either
+// side of it (where the pruning's bound is tested), and at 0 on a point of the cloud.
+TEST(KdTree, AnyWithinIsTheNearestWithinTheRadius) {
+  const Cloud c = random_cloud(3000, 5);
+  const KdTree tree(c.points);
+  Rng r(6);
+  int near = 0, far = 0;
+  for (int q = 0; q < 300; ++q) {
+    const Eigen::Vector3f p(r.uniform(), r.uniform(), 0.2 * r.uniform());
+    std::uint32_t idx = 0;
+    float d2 = 0.0f;
+    ASSERT_EQ(tree.knn(p, 1, &idx, &d2), 1u);
+    const float at = std::sqrt(d2);
+    for (const float radius :
+         {float(0.05 * r.uniform()), at, std::nextafter(at, 0.0f), std::nextafter(at, 1.0f)}) {
+      const bool expected = d2 <= radius * radius;
+      EXPECT_EQ(tree.any_within(p, radius), expected) << "query " << q << " radius " << radius;
+      (expected ? near : far) += 1;
+    }
+    EXPECT_TRUE(tree.any_within(c.points[std::size_t(q)], 0.0f));
+  }
+  EXPECT_GT(near, 300);  // both answers were asked for
+  EXPECT_GT(far, 100);
+  EXPECT_FALSE(tree.any_within({0.5f, 0.5f, 0.1f}, -1.0f));
+  EXPECT_FALSE(tree.any_within({0.5f, 0.5f, 0.1f}, std::nanf("")));
+  Cloud empty;
+  EXPECT_FALSE(KdTree(empty.points).any_within({0, 0, 0}, 10.0f));
 }
 
 TEST(KdTree, KnnAllIsIndependentOfThreadsAndFindsSelfFirst) {

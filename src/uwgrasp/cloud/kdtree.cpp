@@ -54,6 +54,29 @@ std::size_t KdTree::knn(const Eigen::Vector3f& q, std::size_t k, std::uint32_t* 
   return impl_->index.knnSearch(q.data(), k, indices, sq_dists);
 }
 
+namespace {
+// nanoflann's result-set interface for "is any point within r": branches are pruned against a
+// bound a little over r^2 (nanoflann's running lower bounds are sums of rounded squares; the
+// margin keeps a point at r from being pruned by a rounding), points are tested against r^2.
+struct AnyWithin {
+  float r2, bound;
+  bool found = false;
+  bool full() const { return true; }
+  bool addPoint(float d2, std::uint32_t) {
+    found = d2 <= r2;
+    return !found;  // false ends the search
+  }
+  float worstDist() const { return bound; }
+};
+}  // namespace
+
+bool KdTree::any_within(const Eigen::Vector3f& q, float r) const {
+  if (size() == 0 || !(r >= 0.0f)) return false;
+  AnyWithin result{r * r, r * r * (1.0f + 1e-5f) + 1e-30f};
+  impl_->index.findNeighbors(result, q.data(), nanoflann::SearchParams());
+  return result.found;
+}
+
 void KdTree::radius(const Eigen::Vector3f& q, float r,
                     std::vector<std::pair<std::uint32_t, float>>& out) const {
   out.clear();

@@ -24,6 +24,10 @@ class KdTree {
   // tree has fewer points). Distances are squared.
   std::size_t knn(const Eigen::Vector3f& q, std::size_t k, std::uint32_t* indices,
                   float* sq_dists) const;
+  // Whether some point lies within `radius` of q (squared distance <= radius^2, the test knn's
+  // nearest would pass): the search prunes at the radius from the start and stops at the first
+  // such point, so it is cheaper than knn(q, 1), most of all where no point is near.
+  bool any_within(const Eigen::Vector3f& q, float radius) const;
   // All points within `radius` of q, nearest first, as (index, squared distance).
   void radius(const Eigen::Vector3f& q, float radius,
               std::vector<std::pair<std::uint32_t, float>>& out) const;

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 
 #include "uwgrasp/core/error.hpp"
 
@@ -231,20 +231,35 @@ std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std:
     std::vector<Eigen::Vector3f> pts;
     for (const auto i : o.points[out[next]]) pts.push_back(cloud.points[i]);
     const NearCells near(pts, box[out[next]], reach);
-    std::optional<cloud::KdTree> tree;  // built when a point may be within reach
+    // The other objects' points that may reach the part, each object's in a run of `queries`.
+    std::vector<std::pair<std::size_t, std::size_t>> runs;  // (object, end of its run)
+    std::vector<Eigen::Vector3f> queries;
+    Eigen::AlignedBox3f around;
     for (std::size_t k = 0; k < o.points.size(); ++k) {
       if (taken[k] || !eligible[k] || box[k].exteriorDistance(box[out[next]]) > 1.001f * reach + 1e-6f)
         continue;
-      std::uint32_t idx = 0;
-      float d2 = 0;
-      for (const auto i : o.points[k]) {
-        if (!near.may_reach(cloud.points[i])) continue;
-        if (!tree) tree.emplace(pts);
-        if (tree->knn(cloud.points[i], 1, &idx, &d2) == 1 && d2 <= reach * reach) {
+      for (const auto i : o.points[k])
+        if (near.may_reach(cloud.points[i]))
+          queries.push_back(cloud.points[i]), around.extend(cloud.points[i]);
+      if (runs.empty() ? !queries.empty() : queries.size() > runs.back().second)
+        runs.emplace_back(k, queries.size());
+    }
+    if (runs.empty()) continue;
+    // Only the part's points with a query within a cell of them can be within reach of one: the
+    // tree holds those alone (on mOSD_learn0, 8,311 of the part's 20,257 points for 4,889 queries),
+    // and any_within stops at the first point within reach (knn(q, 1) searched for the nearest).
+    const NearCells back(queries, around, reach);
+    std::erase_if(pts, [&](const Eigen::Vector3f& p) { return !back.may_reach(p); });
+    if (pts.empty()) continue;
+    const cloud::KdTree tree(pts);
+    std::size_t from = 0;
+    for (const auto& [k, end] : runs) {
+      for (std::size_t j = from; j < end; ++j)
+        if (tree.any_within(queries[j], reach)) {
           taken[k] = 1, out.push_back(k);
           break;
         }
-      }
+      from = end;
     }
   }
   return out;
