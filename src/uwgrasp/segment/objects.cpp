@@ -238,11 +238,11 @@ std::vector<std::size_t> gather_parts(const Cloud& cloud, const Objects& o, std:
     for (std::size_t k = 0; k < o.points.size(); ++k) {
       if (taken[k] || !eligible[k] || box[k].exteriorDistance(box[out[next]]) > 1.001f * reach + 1e-6f)
         continue;
+      const std::size_t before = queries.size();
       for (const auto i : o.points[k])
         if (near.may_reach(cloud.points[i]))
           queries.push_back(cloud.points[i]), around.extend(cloud.points[i]);
-      if (runs.empty() ? !queries.empty() : queries.size() > runs.back().second)
-        runs.emplace_back(k, queries.size());
+      if (queries.size() > before) runs.emplace_back(k, queries.size());
     }
     if (runs.empty()) continue;
     // Only the part's points with a query within a cell of them can be within reach of one: the
