@@ -24,11 +24,12 @@ std::uint64_t points_hash(const Cloud& c) {
   return h;
 }
 
-// The thesis scene without sensor noise: only Embree's hits and our geometry make its points
-// (no libm call whose variant the CPU picks). On an AVX-512 machine without the cap, 27,251 of
-// its points moved by up to 0.5 um and the hash with them. The constant is this frame's on
-// AVX2 and AVX-512 machines; a change to the renderer that moves a point changes it: check
-// that the change is meant (the other Render tests), then record the new value.
+// The thesis scene without sensor noise: Embree's hits and our geometry make its points (the
+// same hash with glibc's FMA maths switched off, GLIBC_TUNABLES=glibc.cpu.hwcaps=-FMA,-AVX2).
+// On an AVX-512 machine without the cap the hash differs (`simulate`'s noiseless thesis frame:
+// 27,251 points moved by up to 0.5 um). The constant is this frame's on AVX2 and AVX-512
+// machines; a change to the renderer that moves a point changes it: check that the change is
+// meant (the other Render tests), then record the new value.
 TEST(Reproducible, TheThesisFrameIsTheSameOnEveryMachine) {
   const Scene s = builtin_scene("thesis");
   const World world(s);
