@@ -89,6 +89,7 @@ void reset(Preprocessed& out, std::size_t input_size) {
   out.plane.found = false, out.plane.coefficients.setZero(), out.plane.iterations = 0;
   out.plane.inliers.clear();
   out.plane_is_face = false, out.noise = {}, out.counts = {}, out.organised = false;
+  out.noise_footprints = 0.0, out.normal_half_window = 0;
   out.neighbours.k = 0, out.neighbours.window = false;
   out.neighbours.indices.clear(), out.neighbours.sq_dists.clear(), out.neighbours.count.clear();
   out.counts.input = input_size;

@@ -52,6 +52,10 @@ struct Preprocessed {
   // mode.
   Neighbours neighbours;
   bool organised = false;  // which path ran (see preprocess below)
+  // Organised path: the frame's depth noise in pixel footprints and the normals' half window it
+  // chose (organised.hpp, normal_window); 0 on the k-d tree path.
+  double noise_footprints = 0.0;
+  std::uint32_t normal_half_window = 0;
 };
 
 // Runs the chain; each stage's time is recorded in `timer` under its own name ("finite",

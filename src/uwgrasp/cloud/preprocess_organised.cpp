@@ -89,7 +89,14 @@ void preprocess_organised(const Cloud& in, const PreprocessConfig& cfg, std::uin
   window_neighbours(cur.points, ws.map, cfg.organised, cur.viewpoint, out.neighbours, ws.window);
   out.counts.after_outliers = cur.size();
   timer.start("normals");
-  window_normals(cur, ws.map, cfg.organised, ws.window);
+  // A noisier sensor than the default's gets a wider normal window (organised.hpp).
+  OrganisedConfig normal_cfg = cfg.organised;
+  if (cfg.organised.max_normal_slope > 0.0f)
+    out.noise_footprints =
+        noise_per_pixel(cur.points, ws.map, cur.viewpoint, cfg.organised.depth_change, ws.window);
+  out.normal_half_window = normal_cfg.normal_half_window =
+      normal_window(out.noise_footprints, cfg.organised);
+  window_normals(cur, ws.map, normal_cfg, ws.window);
   timer.stop();
   out.counts.output = cur.size();
 }

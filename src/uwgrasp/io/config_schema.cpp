@@ -50,6 +50,8 @@ void visit_preprocess(Visitor& v, cloud::PreprocessConfig& c) {
     v.field("enabled", c.organised.enabled);
     v.field("half_window", c.organised.half_window, 1, 7);
     v.field("normal_half_window", c.organised.normal_half_window, 1, 7);
+    v.field("max_normal_slope", c.organised.max_normal_slope, 0.0, 1.0);
+    v.field("max_normal_half_window", c.organised.max_normal_half_window, 1, 7);
     v.field("depth_change", c.organised.depth_change, kTiny, 10.0);
   });
 }
