@@ -115,7 +115,7 @@ double noise_per_pixel(std::span<const Eigen::Vector3f> points, const PixelMap& 
 // depth camera (1.2 mm + 1.9 mm/m^2 r^2) measures 1.5-2.1, one with twice its sigma_k 2.3-3.8.
 // Judged top-1s (docs/results/grasps-that-hold.md): with the default noise 7 x 7 held the most
 // (9 x 9: 5 fewer of 1,080); with twice the noise 9 x 9 held 14-26 more of 360; with three and
-// four times the noise no window did better than 7 x 7, and 9 x 9 and wider held 2-12 fewer.
+// four times the noise no window did better than 7 x 7, and 9 x 9 and wider held 1-12 fewer.
 std::uint32_t normal_window(double noise_footprints, const OrganisedConfig& cfg);
 
 }  // namespace uwgrasp::cloud
