@@ -38,10 +38,7 @@ void print_table(const std::string& name, const segment::Scene& s, long selected
   } else {
     std::printf("plane: none found\n");
   }
-  if (s.pre.organised)
-    std::printf("normals: %u x %u pixel windows (depth noise %.2f pixel footprints)\n",
-                2 * s.pre.normal_half_window + 1, 2 * s.pre.normal_half_window + 1,
-                s.pre.noise_footprints);
+  if (s.pre.organised) std::printf("normals: %s\n", cloud::normals_summary(s.pre).c_str());
   std::printf("%zu points after outlier removal, segmented into %zu segments\n\n", c.output,
               s.info.size());
   std::printf("  seg   points   centroid x      y      z (m)   mean r   g   b   %s\n",

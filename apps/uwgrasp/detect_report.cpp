@@ -103,10 +103,8 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
   const Eigen::Vector3d c = centroid(d.object);
   std::printf("%s: %zu points in, %zu after preprocessing, %zu segments\n", name.c_str(),
               d.scene.pre.counts.input, d.scene.pre.counts.output, d.scene.info.size());
-  if (const auto& pre = d.scene.pre; pre.organised)
-    std::printf("normals: %u x %u pixel windows (depth noise %.2f pixel footprints)\n",
-                2 * pre.normal_half_window + 1, 2 * pre.normal_half_window + 1,
-                pre.noise_footprints);
+  if (d.scene.pre.organised)
+    std::printf("normals: %s\n", cloud::normals_summary(d.scene.pre).c_str());
   std::printf("object: segment %zu, %zu points, centroid (%.3f, %.3f, %.3f) m\n", d.segment,
               d.object.size(), c.x(), c.y(), c.z());
   if (d.restored_colours)

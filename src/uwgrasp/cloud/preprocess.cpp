@@ -3,6 +3,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -118,6 +119,14 @@ void preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed
     preprocess_organised(in, cfg, seed, timer, out, ws);
   else
     preprocess_unorganised(in, cfg, seed, timer, share_k, out, ws);
+}
+
+std::string normals_summary(const Preprocessed& p) {
+  if (!p.organised) return {};
+  const std::string side = std::to_string(2 * p.normal_half_window + 1);
+  char noise[32];
+  std::snprintf(noise, sizeof noise, "%.2f", p.noise_footprints);
+  return side + " x " + side + " pixel windows (depth noise " + noise + " pixel footprints)";
 }
 
 std::string path_summary(const Cloud& in, const PreprocessConfig& cfg) {

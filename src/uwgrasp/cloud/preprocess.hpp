@@ -77,5 +77,8 @@ void preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed
 // One line on which path preprocess takes for this cloud and why, e.g. "organised (640 x 480
 // frame, 5 x 5 pixel windows)" or "k-d tree (unorganised cloud)", for the CLI to print.
 std::string path_summary(const Cloud& in, const PreprocessConfig& cfg);
+// The organised path's normal window and the noise that chose it, e.g. "7 x 7 pixel windows
+// (depth noise 1.94 pixel footprints)"; empty on the k-d tree path.
+std::string normals_summary(const Preprocessed& p);
 
 }  // namespace uwgrasp::cloud
