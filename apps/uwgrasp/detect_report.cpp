@@ -116,7 +116,10 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
     std::printf("shape: %zu seen points, surface noise %.1f mm", d.object.size(),
                 1e3 * r.shape.noise);
     if (r.shape.sensor_noise > r.shape.measured_noise)  // grasp.shape.depth_error
-      std::printf(" (the sensor's depth error at the object's depth; its points scatter %.1f mm)",
+      std::printf(" (%s at the object's depth; its points scatter %.1f mm)",
+                  d.scene.pre.moved_depth_error > cfg.grasp.shape.depth_error
+                      ? "the depth error left in the points moved onto their windows' planes"
+                      : "the sensor's depth error",
                   1e3 * r.shape.measured_noise);
     std::printf(", back mirrored about %zu symmetry plane%s (%zu points)", r.shape.planes.size(),
                 r.shape.planes.size() == 1 ? "" : "s", r.shape.mirrored_points.size());

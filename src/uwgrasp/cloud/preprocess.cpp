@@ -90,7 +90,7 @@ void reset(Preprocessed& out, std::size_t input_size) {
   out.plane.found = false, out.plane.coefficients.setZero(), out.plane.iterations = 0;
   out.plane.inliers.clear();
   out.plane_is_face = false, out.noise = {}, out.counts = {}, out.organised = false;
-  out.noise_footprints = 0.0, out.normal_half_window = 0;
+  out.noise_footprints = 0.0, out.normal_half_window = 0, out.moved_depth_error = 0.0;
   out.neighbours.k = 0, out.neighbours.window = false;
   out.neighbours.indices.clear(), out.neighbours.sq_dists.clear(), out.neighbours.count.clear();
   out.counts.input = input_size;
@@ -126,7 +126,16 @@ std::string normals_summary(const Preprocessed& p) {
   const std::string side = std::to_string(2 * p.normal_half_window + 1);
   char noise[32];
   std::snprintf(noise, sizeof noise, "%.2f", p.noise_footprints);
-  return side + " x " + side + " pixel windows (depth noise " + noise + " pixel footprints)";
+  std::string line =
+      side + " x " + side + " pixel windows (depth noise " + noise + " pixel footprints)";
+  if (p.moved_depth_error > 0.0) {
+    char left[96];
+    std::snprintf(left, sizeof left,
+                  "; points moved onto their windows' planes, %.2f mm left at 1 m",
+                  1e3 * p.moved_depth_error);
+    line += left;
+  }
+  return line;
 }
 
 std::string path_summary(const Cloud& in, const PreprocessConfig& cfg) {

@@ -136,14 +136,20 @@ void detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   d.floor_attitude.reset();
   if (levels_from_floor(cfg.frames) && d.scene.pre.plane.found)
     d.floor_attitude = attitude_from_floor(d.scene.pre.plane.coefficients, cfg.frames);
-  if (!d.floor_attitude) {
+  // Points moved onto their windows' planes scatter far less than they err: the object's model
+  // takes the error left in them as its noise floor (cloud::Preprocessed::moved_depth_error).
+  const float moved = float(d.scene.pre.moved_depth_error);
+  if (!d.floor_attitude && !(moved > cfg.shape.depth_error)) {
     d.result = find_grasps(d.object, cfg, leaf, seed, d.timer, &around);
     return;
   }
-  GraspConfig levelled = cfg;
-  levelled.frames.capture_roll = d.floor_attitude->roll;
-  levelled.frames.capture_pitch = d.floor_attitude->pitch;
-  d.result = find_grasps(d.object, levelled, leaf, seed, d.timer, &around);
+  GraspConfig adapted = cfg;
+  adapted.shape.depth_error = std::max(cfg.shape.depth_error, moved);
+  if (d.floor_attitude) {
+    adapted.frames.capture_roll = d.floor_attitude->roll;
+    adapted.frames.capture_pitch = d.floor_attitude->pitch;
+  }
+  d.result = find_grasps(d.object, adapted, leaf, seed, d.timer, &around);
 }
 
 Detection detect(const Cloud& input, const cloud::PreprocessConfig& pre,
