@@ -103,27 +103,30 @@ static void BM_OrgNormals(benchmark::State& s) {
   Cloud c = frame().cloud;
   for (auto _ : s) cloud::window_normals(c, frame().map, {});
 }
-// The normals of a 9 x 9 window and the move onto their planes (a frame whose window grew: a
-// noisier sensor's, e.g. UWGRASP_BENCH_FRAME a simulated frame with sim.noise.sigma_k 0.008).
+// The normals of a 9 x 9 window (and their windows' centroids), and the move onto their planes
+// (a frame whose window grew: a noisier sensor's, e.g. UWGRASP_BENCH_FRAME a simulated frame
+// with sim.noise.sigma_k 0.008).
 static void BM_OrgNormals9(benchmark::State& s) {
   cloud::OrganisedConfig cfg;
   cfg.normal_half_window = 4;
   Cloud c = frame().cloud;
   cloud::WindowScratch scratch;
-  for (auto _ : s) cloud::window_normals(c, frame().map, cfg, scratch);
+  std::vector<Eigen::Vector3f> centroids;
+  for (auto _ : s) cloud::window_normals(c, frame().map, cfg, scratch, &centroids);
 }
 static void BM_OrgMoveOntoPlanes(benchmark::State& s) {
   cloud::OrganisedConfig cfg;
   cfg.normal_half_window = 4;
   Cloud normals = frame().cloud;
   cloud::WindowScratch scratch;
-  cloud::window_normals(normals, frame().map, cfg, scratch);
+  std::vector<Eigen::Vector3f> centroids;
+  cloud::window_normals(normals, frame().map, cfg, scratch, &centroids);
   Cloud c;
   for (auto _ : s) {
     s.PauseTiming();
     c = normals;
     s.ResumeTiming();
-    benchmark::DoNotOptimize(cloud::move_onto_planes(c, frame().map, cfg, scratch));
+    benchmark::DoNotOptimize(cloud::move_onto_planes(c, centroids, cfg, scratch));
   }
 }
 static void BM_OrgSegments(benchmark::State& s) {

@@ -86,8 +86,9 @@ Moved move(const Cloud& frame, bool apply = true) {
   OrganisedConfig cfg;
   cfg.normal_half_window = 4;
   WindowScratch scratch;
-  window_normals(m.cloud, m.map, cfg, scratch);
-  if (apply) m.removed = move_onto_planes(m.cloud, m.map, cfg, scratch);
+  std::vector<Eigen::Vector3f> centroids;
+  window_normals(m.cloud, m.map, cfg, scratch, &centroids);
+  if (apply) m.removed = move_onto_planes(m.cloud, centroids, cfg, scratch);
   return m;
 }
 

@@ -60,6 +60,7 @@ struct WindowScratch {
   std::vector<char> wanted;
   std::vector<float> sample;  // normal_window's samples of pixel pitches and second differences
   std::vector<float> move;    // move_onto_planes's moves along the rays
+  std::vector<Eigen::Vector3f> centroid;  // the windows' centroids, for move_onto_planes
 };
 
 // The map of `pixels` (ascending pixel indices of a width x height frame).
@@ -95,8 +96,10 @@ void window_mean_distances(std::span<const Eigen::Vector3f> points, const PixelM
 // the window size); the others sum their pixels. Fills cloud.normals and cloud.curvature;
 // map.pixel[j] is the pixel of cloud.points[j].
 void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg);
+// With `centroids`, also each window's centroid (its continuous in-play pixels', the point
+// itself among them) into (*centroids)[j], for move_onto_planes.
 void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg,
-                    WindowScratch& scratch);
+                    WindowScratch& scratch, std::vector<Eigen::Vector3f>* centroids = nullptr);
 
 // The same normals (summing the pixels, for a few points) of points[which[i]] only, into out[i].
 void window_normals_of(std::span<const Eigen::Vector3f> points, const PixelMap& map,
@@ -126,15 +129,16 @@ double noise_per_pixel(std::span<const Eigen::Vector3f> points, const PixelMap& 
 std::uint32_t normal_window(double noise_footprints, const OrganisedConfig& cfg);
 
 // Each point moved along its ray (from cloud.viewpoint) onto the plane of its normals' window:
-// through its continuous window pixels' centroid, with its normal cloud.normals[j]. The plane
-// fit averages the window's depth noise away where a point holds its own. A point stays where
-// its normal is missing, where the ray meets the plane within 15 degrees of grazing, or where the
-// move would exceed three continuity allowances (3 x depth_change x range: the window straddles
-// a crease or a thin part). Every move is taken from the points as they were. Returns the depth
-// noise the moves took out as sigma at 1 m of a law growing with range^2 (a depth camera's, and
-// ShapeConfig::depth_error's): 1.4826 x the median |move| / range^2; 0 when none moved. The
-// normals are then stale: compute them again.
-double move_onto_planes(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg,
-                        WindowScratch& scratch);
+// through the window's centroid centroids[j], with its normal cloud.normals[j] (both from
+// window_normals). The plane fit averages the window's depth noise away where a point holds its
+// own. A point stays where its normal is missing (fewer than three pixels), where the ray meets
+// the plane within 15 degrees of grazing, or where the move would exceed three continuity
+// allowances (3 x depth_change x range: the window straddles a crease or a thin part). Every
+// move is taken from the points as they were. Returns the depth noise the moves took out as
+// sigma at 1 m of a law growing with range^2 (a depth camera's, and ShapeConfig::depth_error's):
+// 1.4826 x the median |move| / range^2; 0 when none moved. The normals are then stale: compute
+// them again.
+double move_onto_planes(Cloud& cloud, std::span<const Eigen::Vector3f> centroids,
+                        const OrganisedConfig& cfg, WindowScratch& scratch);
 
 }  // namespace uwgrasp::cloud

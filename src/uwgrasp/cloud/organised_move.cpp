@@ -3,7 +3,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 
@@ -23,38 +22,30 @@ constexpr float kMinIncidence = 0.2588f;  // sin 15 degrees
 // farther, the window's plane is not its surface (a thin part, a crease the window straddles).
 constexpr float kMaxMove = 3.0f;
 
-// Where point j's ray meets the plane through its window's centroid with its normal n, as the
-// signed move along the ray; NaN when it stays. list[0] is the point itself (window_list).
-float move_along_ray(std::span<const Eigen::Vector3f> points, std::span<const std::uint32_t> list,
-                     const Eigen::Vector3f& n, const Eigen::Vector3f& ray, float limit) {
-  if (list.size() < 3 || !n.allFinite()) return std::numeric_limits<float>::quiet_NaN();
+// Where point p's ray meets the plane through its window's centroid c with its normal n, as
+// the signed move along the ray; NaN when it stays.
+float move_along_ray(const Eigen::Vector3f& p, const Eigen::Vector3f& c, const Eigen::Vector3f& n,
+                     const Eigen::Vector3f& ray, float limit) {
+  if (!n.allFinite()) return std::numeric_limits<float>::quiet_NaN();  // under 3 pixels
   const float along = n.dot(ray);
   if (std::abs(along) < kMinIncidence) return std::numeric_limits<float>::quiet_NaN();
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();  // about the point itself: no cancellation
-  const Eigen::Vector3f& p = points[list[0]];
-  for (const std::uint32_t s : list) sum += (points[s] - p).cast<double>();
   // The plane n.(x - c) = 0 and the ray p + t ray: t = n.(c - p) / n.ray.
-  const float t = float(n.cast<double>().dot(sum / double(list.size()))) / along;
+  const float t = n.dot(c - p) / along;
   return std::abs(t) <= limit ? t : std::numeric_limits<float>::quiet_NaN();
 }
 }  // namespace
 
-double move_onto_planes(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg,
-                        WindowScratch& scratch) {
-  check_window(cfg.normal_half_window);
-  if (map.pixel.size() != cloud.size() || cloud.normals.size() != cloud.size())
-    throw Error("move_onto_planes: the pixel map or the normals do not fit this cloud");
+double move_onto_planes(Cloud& cloud, std::span<const Eigen::Vector3f> centroids,
+                        const OrganisedConfig& cfg, WindowScratch& scratch) {
+  if (centroids.size() != cloud.size() || cloud.normals.size() != cloud.size())
+    throw Error("move_onto_planes: the centroids or the normals do not fit this cloud");
   const std::span<const float> range = ranges(cloud.points, cloud.viewpoint, scratch.range);
-  const WindowTable table(map.width, cfg.normal_half_window);
   std::vector<float>& move = scratch.move;  // each point's move along its ray, NaN: none
   move.resize(cloud.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1024), [&](const auto& r) {
-    std::array<std::uint32_t, kMaxWindow> list;  // a window's pixels (check_window above)
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 4096), [&](const auto& r) {
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
-      const std::size_t n =
-          window_list(cloud.points, map, table, cfg.depth_change, range, j, list.data(), nullptr);
       const Eigen::Vector3f ray = (cloud.points[j] - cloud.viewpoint) / std::max(range[j], 1e-6f);
-      move[j] = move_along_ray(cloud.points, {list.data(), n}, cloud.normals[j], ray,
+      move[j] = move_along_ray(cloud.points[j], centroids[j], cloud.normals[j], ray,
                                kMaxMove * cfg.depth_change * range[j]);
     }
   });
