@@ -103,30 +103,26 @@ static void BM_OrgNormals(benchmark::State& s) {
   Cloud c = frame().cloud;
   for (auto _ : s) cloud::window_normals(c, frame().map, {});
 }
-// The normals of a 9 x 9 window (and their windows' centroids), and the move onto their planes
-// (a frame whose window grew: a noisier sensor's, e.g. UWGRASP_BENCH_FRAME a simulated frame
-// with sim.noise.sigma_k 0.008).
+// The normals of a 9 x 9 window, and the move onto quadratics fitted to the windows' ranges (a
+// frame whose window grew: a noisier sensor's, e.g. UWGRASP_BENCH_FRAME a simulated frame with
+// sim.noise.sigma_k 0.008).
 static void BM_OrgNormals9(benchmark::State& s) {
   cloud::OrganisedConfig cfg;
   cfg.normal_half_window = 4;
   Cloud c = frame().cloud;
   cloud::WindowScratch scratch;
-  std::vector<Eigen::Vector3f> centroids;
-  for (auto _ : s) cloud::window_normals(c, frame().map, cfg, scratch, &centroids);
+  for (auto _ : s) cloud::window_normals(c, frame().map, cfg, scratch);
 }
-static void BM_OrgMoveOntoPlanes(benchmark::State& s) {
+static void BM_OrgMoveOntoQuadrics(benchmark::State& s) {
   cloud::OrganisedConfig cfg;
   cfg.normal_half_window = 4;
-  Cloud normals = frame().cloud;
   cloud::WindowScratch scratch;
-  std::vector<Eigen::Vector3f> centroids;
-  cloud::window_normals(normals, frame().map, cfg, scratch, &centroids);
   Cloud c;
   for (auto _ : s) {
     s.PauseTiming();
-    c = normals;
+    c = frame().cloud;
     s.ResumeTiming();
-    benchmark::DoNotOptimize(cloud::move_onto_planes(c, centroids, cfg, scratch));
+    benchmark::DoNotOptimize(cloud::move_onto_quadrics(c, frame().map, cfg, scratch));
   }
 }
 static void BM_OrgSegments(benchmark::State& s) {
@@ -195,7 +191,7 @@ BENCHMARK(BM_OrgWindowLists)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OrgOutlierStatistic)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OrgNormals)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OrgNormals9)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_OrgMoveOntoPlanes)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OrgMoveOntoQuadrics)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OrgSegments)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_WholeObject)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Debris)->Unit(benchmark::kMillisecond);

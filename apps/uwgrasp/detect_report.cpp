@@ -118,7 +118,7 @@ void print_detection(const std::string& name, const grasp::Detection& d, const i
     if (r.shape.sensor_noise > r.shape.measured_noise)  // grasp.shape.depth_error
       std::printf(" (%s at the object's depth; its points scatter %.1f mm)",
                   d.scene.pre.moved_depth_error > cfg.grasp.shape.depth_error
-                      ? "the depth error left in the points moved onto their windows' planes"
+                      ? "the depth error left in the points moved onto their windows' range fits"
                       : "the sensor's depth error",
                   1e3 * r.shape.measured_noise);
     std::printf(", back mirrored about %zu symmetry plane%s (%zu points)", r.shape.planes.size(),

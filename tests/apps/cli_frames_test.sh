@@ -93,16 +93,16 @@ assert j["outcome"] not in ("miss", "other_object"), j
 PY
 
 # A depth camera four times noisier than the simulated default: the normals' window grows, the
-# points move onto their windows' planes, and detect says the surface noise is what is left in
+# points move onto their windows' range fits, and detect says the surface noise is what is left in
 # them; with the move off, neither.
 "$BIN" simulate --scene barbell --set sim.noise.sigma_k=0.008 --out "$T/noisy" >/dev/null 2>&1 || bad "simulate a noisier sensor"
 "$BIN" detect "$T/noisy/cloud.pcd" --config "$T/noisy/config.yaml" >"$T/noisy.txt" 2>&1 &&
-  grep -q "^normals: 9 x 9 pixel windows .*; points moved onto their windows' planes, [0-9.]* mm left at 1 m" "$T/noisy.txt" &&
-  grep -q "^shape: .*(the depth error left in the points moved onto their windows' planes" "$T/noisy.txt" &&
+  grep -q "^normals: 9 x 9 pixel windows .*; points moved onto their windows' range fits, [0-9.]* mm left at 1 m" "$T/noisy.txt" &&
+  grep -q "^shape: .*(the depth error left in the points moved onto their windows' range fits" "$T/noisy.txt" &&
   ok || bad "a noisier frame's points are not moved: $(grep -E '^(normals|shape):' "$T/noisy.txt")"
-"$BIN" segment "$T/noisy/cloud.pcd" --set preprocess.organised.move_onto_planes=false >"$T/still.txt" 2>&1 &&
+"$BIN" segment "$T/noisy/cloud.pcd" --set preprocess.organised.move_onto_quadrics=false >"$T/still.txt" 2>&1 &&
   grep -q "^normals: 9 x 9 pixel windows" "$T/still.txt" && ! grep -q "moved onto" "$T/still.txt" &&
-  ok || bad "move_onto_planes=false still moves: $(grep normals: "$T/still.txt")"
+  ok || bad "move_onto_quadrics=false still moves: $(grep normals: "$T/still.txt")"
 
 # PCL's sample clouds carry a VIEWPOINT (a half turn about x) their points do not follow: as given,
 # the points are in front of the camera; the VIEWPOINT would put them all behind it.

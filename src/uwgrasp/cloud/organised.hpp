@@ -32,11 +32,12 @@ struct OrganisedConfig {
   // on the simulated scenes were the same (docs/benchmarks.md).
   float depth_change = 0.01f;
   // On a frame whose normals' window grew (normal_window), each point is moved along its ray
-  // onto its window's plane and the normals are computed again from the moved points
-  // (move_onto_planes). Judged at three and four times the simulated sensor's noise, 17-42 more
-  // of 360 top-1s held a seed set, and over two to four times half as many offered grasps
-  // failed (docs/results/grasps-that-hold.md); frames that keep 7 x 7 are not moved.
-  bool move_onto_planes = true;
+  // onto a quadratic fitted to its window's ranges and the normals are computed again from the
+  // moved points (move_onto_quadrics). Judged at two to four times the simulated sensor's noise
+  // (docs/results/grasps-that-hold.md): 2,815 of 2,880 top-1s held or rightly found none
+  // (2,555 unmoved, 2,678 moved onto the windows' planes, which bend a rod's or a bottle's
+  // side flat); frames that keep 7 x 7 are not moved.
+  bool move_onto_quadrics = true;
 };
 
 // Which pixels hold the points still in play: pixel[j] is the pixel of point j (ascending), and
@@ -59,8 +60,7 @@ struct WindowScratch {
   std::vector<std::array<double, 10>> columns;
   std::vector<char> wanted;
   std::vector<float> sample;  // normal_window's samples of pixel pitches and second differences
-  std::vector<float> move;    // move_onto_planes's moves along the rays
-  std::vector<Eigen::Vector3f> centroid;  // the windows' centroids, for move_onto_planes
+  std::vector<float> move;    // move_onto_quadrics's moves along the rays
 };
 
 // The map of `pixels` (ascending pixel indices of a width x height frame).
@@ -96,10 +96,8 @@ void window_mean_distances(std::span<const Eigen::Vector3f> points, const PixelM
 // the window size); the others sum their pixels. Fills cloud.normals and cloud.curvature;
 // map.pixel[j] is the pixel of cloud.points[j].
 void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg);
-// With `centroids`, also each window's centroid (its continuous in-play pixels', the point
-// itself among them) into (*centroids)[j], for move_onto_planes.
 void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg,
-                    WindowScratch& scratch, std::vector<Eigen::Vector3f>* centroids = nullptr);
+                    WindowScratch& scratch);
 
 // The same normals (summing the pixels, for a few points) of points[which[i]] only, into out[i].
 void window_normals_of(std::span<const Eigen::Vector3f> points, const PixelMap& map,
@@ -128,17 +126,33 @@ double noise_per_pixel(std::span<const Eigen::Vector3f> points, const PixelMap& 
 // four times the noise no window did better than 7 x 7, and 9 x 9 and wider held 1-12 fewer.
 std::uint32_t normal_window(double noise_footprints, const OrganisedConfig& cfg);
 
-// Each point moved along its ray (from cloud.viewpoint) onto the plane of its normals' window:
-// through the window's centroid centroids[j], with its normal cloud.normals[j] (both from
-// window_normals). The plane fit averages the window's depth noise away where a point holds its
-// own. A point stays where its normal is missing (fewer than three pixels), where the ray meets
-// the plane within 15 degrees of grazing, or where the move would exceed three continuity
-// allowances (3 x depth_change x range: the window straddles a crease or a thin part). Every
-// move is taken from the points as they were. Returns the depth noise the moves took out as
-// sigma at 1 m of a law growing with range^2 (a depth camera's, and ShapeConfig::depth_error's):
-// 1.4826 x the median |move| / range^2; 0 when none moved. The normals are then stale: compute
-// them again.
-double move_onto_planes(Cloud& cloud, std::span<const Eigen::Vector3f> centroids,
-                        const OrganisedConfig& cfg, WindowScratch& scratch);
+// A least-squares quadratic's value at the centre of a whole (2h+1)^2 pixel window is a fixed
+// weighting of the window's values, alpha + beta (du^2 + dv^2) at offset (du, dv); its squared
+// weights sum to alpha, so independent noise sigma per pixel leaves sigma sqrt(alpha) at the
+// centre (9 x 9: 0.211 sigma; a plane's fit would leave sigma / 9 but bend a curved surface).
+struct QuadraticKernel {
+  double alpha = 0.0, beta = 0.0;
+};
+QuadraticKernel quadratic_kernel(std::uint32_t h);
+
+// The depth noise move_onto_quadrics measured, as sigma at 1 m of a law growing with range^2
+// (a depth camera's, and ShapeConfig::depth_error's): what the moves took out, and what is left
+// in a point whose window held whole. Both 0 when no point moved.
+struct MovedOntoQuadrics {
+  double noise = 0.0, left = 0.0;
+};
+
+// Each point moved along its ray (from cloud.viewpoint) to the range, at its own pixel, of a
+// least-squares quadratic in the pixel offsets fitted to the ranges of its window of
+// cfg.normal_half_window (its continuous in-play pixels, as for window_neighbours): a local
+// regression of the range image, which averages the window's depth noise (it lies along the
+// rays) and, unlike a plane, follows a surface's curvature (a rod, a bottle's side). A whole
+// window takes the fixed weights of quadratic_kernel; a cut one (a depth step, a hole, the
+// frame's edge) solves its own fit and stays when under 12 pixels or singular. A point also
+// stays where the move would exceed three continuity allowances (3 x depth_change x range: the
+// window straddles a crease or a thin part). Every move is taken from the ranges as they were.
+// The normals are then stale: compute them again.
+MovedOntoQuadrics move_onto_quadrics(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg,
+                                     WindowScratch& scratch);
 
 }  // namespace uwgrasp::cloud

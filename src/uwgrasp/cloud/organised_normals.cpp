@@ -149,13 +149,12 @@ void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cf
 }
 
 void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cfg,
-                    WindowScratch& scratch, std::vector<Eigen::Vector3f>* centroids) {
+                    WindowScratch& scratch) {
   check_window(cfg.normal_half_window);
   if (map.pixel.size() != cloud.size())
     throw Error("normals: the pixel map does not fit this cloud");
   cloud.normals.resize(cloud.size());
   cloud.curvature.resize(cloud.size());
-  if (centroids) centroids->resize(cloud.size());
   if (cloud.empty()) return;
   const auto store = [&](std::size_t j, const PointNormal& pn) {
     cloud.normals[j] = pn.normal;
@@ -174,16 +173,10 @@ void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cf
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       if (full[j]) continue;
       const std::size_t n = window_list(cloud.points, map, table, cfg.depth_change, range, j, list.data(), nullptr);
-      if (n == whole) {
+      if (n == whole)
         full[j] = 1;
-      } else if (!centroids) {
+      else
         store(j, normal_from(cloud.points, {list.data(), n}, cloud.points[j], cloud.viewpoint));
-      } else {  // normal_from's steps, keeping the mean
-        const MeanCovariance mc = mean_covariance(cloud.points, {list.data(), n});
-        store(j, n < 3 ? PointNormal{}
-                       : normal_from_covariance(mc.cov, cloud.points[j], cloud.viewpoint));
-        (*centroids)[j] = mc.mean.cast<float>();
-      }
     }
   });
   // The others from running sums, in fixed blocks of rows (the sums, and so the output, do not
@@ -205,8 +198,6 @@ void window_normals(Cloud& cloud, const PixelMap& map, const OrganisedConfig& cf
             store(j, m[0] < 3.0
                          ? PointNormal{}
                          : normal_from_covariance(covariance(m), cloud.points[j], cloud.viewpoint));
-            if (centroids)
-              (*centroids)[j] = (origin + Eigen::Vector3d(m[1], m[2], m[3]) / m[0]).cast<float>();
           });
     }
   });

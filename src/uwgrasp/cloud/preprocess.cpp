@@ -131,7 +131,7 @@ std::string normals_summary(const Preprocessed& p) {
   if (p.moved_depth_error > 0.0) {
     char left[96];
     std::snprintf(left, sizeof left,
-                  "; points moved onto their windows' planes, %.2f mm left at 1 m",
+                  "; points moved onto their windows' range fits, %.2f mm left at 1 m",
                   1e3 * p.moved_depth_error);
     line += left;
   }

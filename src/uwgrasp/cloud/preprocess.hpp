@@ -56,9 +56,9 @@ struct Preprocessed {
   // chose (organised.hpp, normal_window); 0 on the k-d tree path.
   double noise_footprints = 0.0;
   std::uint32_t normal_half_window = 0;
-  // When the points were moved onto their windows' planes (organised.hpp, move_onto_planes):
-  // the depth error left in them, sigma at 1 m growing with range^2, the noise the moves took
-  // out over the window's side (sigma / sqrt(N) for N independent pixels); 0 when not moved.
+  // When the points were moved onto quadratics fitted to their windows' ranges (organised.hpp,
+  // move_onto_quadrics): the depth error left in them, sigma at 1 m growing with range^2, from
+  // the noise the moves took out (MovedOntoQuadrics::left); 0 when not moved.
   // The moved points scatter far less than they err: the grasp engine's surface noise is
   // floored at this (grasp::detect, ShapeConfig::depth_error).
   double moved_depth_error = 0.0;
@@ -85,8 +85,8 @@ void preprocess(const Cloud& in, const PreprocessConfig& cfg, std::uint64_t seed
 std::string path_summary(const Cloud& in, const PreprocessConfig& cfg);
 // The organised path's normal window and the noise that chose it, e.g. "7 x 7 pixel windows
 // (depth noise 1.94 pixel footprints)", and when the points were moved onto their windows'
-// planes the error left in them ("; points moved onto their windows' planes, 1.05 mm left at
-// 1 m"); empty on the k-d tree path.
+// range fits the error left in them ("; points moved onto their windows' range fits, 1.64 mm
+// left at 1 m"); empty on the k-d tree path.
 std::string normals_summary(const Preprocessed& p);
 
 }  // namespace uwgrasp::cloud

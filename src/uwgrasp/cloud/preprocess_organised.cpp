@@ -96,14 +96,13 @@ void preprocess_organised(const Cloud& in, const PreprocessConfig& cfg, std::uin
         noise_per_pixel(cur.points, ws.map, cur.viewpoint, cfg.organised.depth_change, ws.window);
   out.normal_half_window = normal_cfg.normal_half_window =
       normal_window(out.noise_footprints, cfg.organised);
-  // A noisy frame's points onto their windows' planes, and their normals and lists again from
-  // the moved points (organised.hpp): the window's fit has averaged the noise a point carries.
-  const bool move = cfg.organised.move_onto_planes &&
-                    normal_cfg.normal_half_window > cfg.organised.normal_half_window;
-  window_normals(cur, ws.map, normal_cfg, ws.window, move ? &ws.window.centroid : nullptr);
-  if (move) {
-    const double removed = move_onto_planes(cur, ws.window.centroid, normal_cfg, ws.window);
-    out.moved_depth_error = removed / double(2 * normal_cfg.normal_half_window + 1);
+  window_normals(cur, ws.map, normal_cfg, ws.window);
+  // A noisy frame's points onto quadratics fitted to their windows' ranges, and their normals
+  // and lists again from the moved points (organised.hpp): the fit has averaged the noise a
+  // point carries.
+  if (cfg.organised.move_onto_quadrics &&
+      normal_cfg.normal_half_window > cfg.organised.normal_half_window) {
+    out.moved_depth_error = move_onto_quadrics(cur, ws.map, normal_cfg, ws.window).left;
     window_normals(cur, ws.map, normal_cfg, ws.window);
     window_neighbours(cur.points, ws.map, cfg.organised, cur.viewpoint, out.neighbours, ws.window);
   }

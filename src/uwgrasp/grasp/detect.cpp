@@ -136,7 +136,7 @@ void detect(const Cloud& input, const cloud::PreprocessConfig& pre,
   d.floor_attitude.reset();
   if (levels_from_floor(cfg.frames) && d.scene.pre.plane.found)
     d.floor_attitude = attitude_from_floor(d.scene.pre.plane.coefficients, cfg.frames);
-  // Points moved onto their windows' planes scatter far less than they err: the object's model
+  // Points moved onto their windows' range fits scatter far less than they err: the object's model
   // takes the error left in them as its noise floor (cloud::Preprocessed::moved_depth_error).
   const float moved = float(d.scene.pre.moved_depth_error);
   if (!d.floor_attitude && !(moved > cfg.shape.depth_error)) {

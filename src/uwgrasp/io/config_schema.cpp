@@ -53,7 +53,7 @@ void visit_preprocess(Visitor& v, cloud::PreprocessConfig& c) {
     v.field("max_normal_slope", c.organised.max_normal_slope, 0.0, 1.0);
     v.field("max_normal_half_window", c.organised.max_normal_half_window, 1, 7);
     v.field("depth_change", c.organised.depth_change, kTiny, 10.0);
-    v.field("move_onto_planes", c.organised.move_onto_planes);
+    v.field("move_onto_quadrics", c.organised.move_onto_quadrics);
   });
 }
 
