@@ -82,11 +82,7 @@ MovedOntoQuadrics move_onto_quadrics(Cloud& cloud, const PixelMap& map, const Or
   const QuadraticKernel k = quadratic_kernel(cfg.normal_half_window);
   std::array<float, kMaxWindow> weight{};  // a whole window's weights, in the table's order
   for (std::size_t i = 0; i < table.size; ++i) {
-    const std::ptrdiff_t o = table.offset[i], w = std::ptrdiff_t(map.width);
-    // offset = dv * width + du with |du| <= h < width / 2: du is the remainder nearest zero.
-    std::ptrdiff_t du = o % w, dv = o / w;
-    if (du > w / 2) du -= w, ++dv;
-    if (du < -w / 2) du += w, --dv;
+    const int du = table.col[i], dv = table.row[i];
     weight[i] = float(k.alpha + k.beta * double(du * du + dv * dv));
   }
   std::vector<float>& move = scratch.move;  // each point's move along its ray, NaN: none

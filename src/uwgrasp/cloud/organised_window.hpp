@@ -63,6 +63,7 @@ struct WindowTable {
   std::size_t size = 0;
   std::array<std::ptrdiff_t, kMaxWindow> offset{};
   std::array<int, kMaxWindow> ring{};
+  std::array<std::int8_t, kMaxWindow> col{}, row{};  // each pixel's offsets du and dv
   WindowTable(std::uint32_t width, std::uint32_t half) : h(int(half)) {
     check_window(half);
     for (int r = 1; r <= h; ++r)
@@ -70,6 +71,7 @@ struct WindowTable {
         const int step = (dv == -r || dv == r) ? 1 : 2 * r;
         for (int du = -r; du <= r; du += step) {
           offset[size] = std::ptrdiff_t(dv) * std::ptrdiff_t(width) + du;
+          col[size] = std::int8_t(du), row[size] = std::int8_t(dv);
           ring[size++] = r;
         }
       }

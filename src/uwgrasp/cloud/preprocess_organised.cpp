@@ -96,16 +96,15 @@ void preprocess_organised(const Cloud& in, const PreprocessConfig& cfg, std::uin
         noise_per_pixel(cur.points, ws.map, cur.viewpoint, cfg.organised.depth_change, ws.window);
   out.normal_half_window = normal_cfg.normal_half_window =
       normal_window(out.noise_footprints, cfg.organised);
-  window_normals(cur, ws.map, normal_cfg, ws.window);
-  // A noisy frame's points onto quadratics fitted to their windows' ranges, and their normals
-  // and lists again from the moved points (organised.hpp): the fit has averaged the noise a
-  // point carries.
+  // A noisy frame's points onto quadratics fitted to their windows' ranges, and their lists
+  // again from the moved points (organised.hpp): the fit has averaged the noise a point
+  // carries. The move reads only the ranges, so the normals come once, from the moved points.
   if (cfg.organised.move_onto_quadrics &&
       normal_cfg.normal_half_window > cfg.organised.normal_half_window) {
     out.moved_depth_error = move_onto_quadrics(cur, ws.map, normal_cfg, ws.window).left;
-    window_normals(cur, ws.map, normal_cfg, ws.window);
     window_neighbours(cur.points, ws.map, cfg.organised, cur.viewpoint, out.neighbours, ws.window);
   }
+  window_normals(cur, ws.map, normal_cfg, ws.window);
   timer.stop();
   out.counts.output = cur.size();
 }
